@@ -1,0 +1,145 @@
+//! Batch evaluation over many geometries: structure of arrays, parallel with rayon.
+
+use crate::error::{Error, Result};
+use crate::geometry::Geometry;
+use crate::model::Material;
+use rayon::prelude::*;
+
+/// Elements per parallel task: large enough to amortize scheduling, small enough to balance.
+const CHUNK: usize = 2048;
+
+/// Many geometries as four parallel slices of angles in radians (structure of arrays).
+#[derive(Debug, Clone, Copy)]
+pub struct GeometryBatch<'a> {
+    theta_i: &'a [f64],
+    phi_i: &'a [f64],
+    theta_r: &'a [f64],
+    phi_r: &'a [f64],
+}
+
+impl<'a> GeometryBatch<'a> {
+    /// Four equally long slices of angles in radians. Every element is validated as by
+    /// [`Geometry::new`].
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`], or [`Error::InvalidAngle`] carrying the element's index.
+    pub fn new(
+        theta_i: &'a [f64],
+        phi_i: &'a [f64],
+        theta_r: &'a [f64],
+        phi_r: &'a [f64],
+    ) -> Result<Self> {
+        let n = theta_i.len();
+        for (name, s) in [("phi_i", phi_i), ("theta_r", theta_r), ("phi_r", phi_r)] {
+            check_len(name, s.len(), n)?;
+        }
+        let batch = Self {
+            theta_i,
+            phi_i,
+            theta_r,
+            phi_r,
+        };
+        // Validate in parallel; report the first bad element.
+        batch
+            .theta_i
+            .par_chunks(CHUNK)
+            .enumerate()
+            .try_for_each(|(c, chunk)| {
+                (0..chunk.len()).try_for_each(|j| batch.geometry_checked(c * CHUNK + j).map(|_| ()))
+            })?;
+        Ok(batch)
+    }
+
+    /// Number of geometries.
+    pub fn len(&self) -> usize {
+        self.theta_i.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.theta_i.is_empty()
+    }
+
+    fn geometry_checked(&self, i: usize) -> Result<Geometry> {
+        Geometry::checked(
+            self.theta_i[i],
+            self.phi_i[i],
+            self.theta_r[i],
+            self.phi_r[i],
+            Some(i),
+        )
+    }
+
+    /// The `i`-th geometry (validated at construction).
+    pub fn get(&self, i: usize) -> Geometry {
+        self.geometry_checked(i)
+            .expect("GeometryBatch elements are validated at construction")
+    }
+}
+
+fn check_len(name: &'static str, got: usize, expected: usize) -> Result<()> {
+    if got == expected {
+        Ok(())
+    } else {
+        Err(Error::LengthMismatch {
+            name,
+            got,
+            expected,
+        })
+    }
+}
+
+/// The full pBRDF `F` (row-major 4×4, sr⁻¹) at every geometry, written into `out`.
+///
+/// # Errors
+/// [`Error::LengthMismatch`] when `out` is not as long as the batch.
+pub fn mueller_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    out: &mut [[f64; 16]],
+) -> Result<()> {
+    check_len("out", out.len(), batch.len())?;
+    out.par_chunks_mut(CHUNK)
+        .enumerate()
+        .for_each(|(c, chunk)| {
+            for (j, o) in chunk.iter_mut().enumerate() {
+                *o = material.pbrdf(&batch.get(c * CHUNK + j)).to_row_major();
+            }
+        });
+    Ok(())
+}
+
+/// The scalar BRDF `f` (sr⁻¹) and DoLP for unpolarized input at every geometry.
+///
+/// # Errors
+/// [`Error::LengthMismatch`] when an output slice is not as long as the batch.
+pub fn brdf_dolp_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    brdf: &mut [f64],
+    dolp: &mut [f64],
+) -> Result<()> {
+    check_len("brdf", brdf.len(), batch.len())?;
+    check_len("dolp", dolp.len(), batch.len())?;
+    brdf.par_chunks_mut(CHUNK)
+        .zip(dolp.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(c, (fb, fd))| {
+            for (j, (b, d)) in fb.iter_mut().zip(fd.iter_mut()).enumerate() {
+                let e = material.evaluate(&batch.get(c * CHUNK + j));
+                *b = e.brdf();
+                *d = e.dolp();
+            }
+        });
+    Ok(())
+}
+
+/// Convenience: the pBRDF at every geometry as a new vector.
+///
+/// # Errors
+/// As [`mueller_into`].
+pub fn mueller(material: &Material, batch: &GeometryBatch<'_>) -> Result<Vec<[f64; 16]>> {
+    let mut out = vec![[0.0; 16]; batch.len()];
+    mueller_into(material, batch, &mut out)?;
+    Ok(out)
+}

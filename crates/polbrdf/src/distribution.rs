@@ -1,0 +1,87 @@
+//! The facet distribution `D(θN) = a·exp(−b·θN²)` (eq. 4, spec §4).
+
+use crate::error::{non_negative, positive, Result};
+use crate::quadrature::integrate;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Gaussian facet distribution of eq. 4: `D(θN) = a·exp(−b·θN²)`, θN in rad, `a` in sr⁻¹,
+/// `b` in rad⁻².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Distribution {
+    a: f64,
+    b: f64,
+}
+
+impl Distribution {
+    /// Explicit `a` (sr⁻¹, ≥ 0) and `b` (rad⁻², > 0).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] naming `a` or `b`.
+    pub fn new(a: f64, b: f64) -> Result<Self> {
+        Ok(Self {
+            a: non_negative("a", a)?,
+            b: positive("b", b)?,
+        })
+    }
+
+    /// Given `b`, with `a` from the hemispherical normalization
+    /// `∫ D(θN) cosθN dΩ = 1` (spec §4).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] naming `b`.
+    pub fn normalized(b: f64) -> Result<Self> {
+        let b = positive("b", b)?;
+        Ok(Self {
+            a: normalization(b),
+            b,
+        })
+    }
+
+    /// From the roughness angle σ (rad): `b = 1/σ²` (SCATMECH's Gaussian angle distribution),
+    /// `a` normalized (spec §4).
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidParameter`] naming `sigma` unless σ is finite and > 0.
+    pub fn from_sigma(sigma: f64) -> Result<Self> {
+        let sigma = positive("sigma", sigma)?;
+        Self::normalized(positive("b", 1.0 / (sigma * sigma))?)
+    }
+
+    /// Amplitude `a` (sr⁻¹).
+    pub fn a(&self) -> f64 {
+        self.a
+    }
+
+    /// Width parameter `b` (rad⁻²).
+    pub fn b(&self) -> f64 {
+        self.b
+    }
+
+    /// The equivalent roughness angle `σ = 1/sqrt(b)` (rad).
+    pub fn sigma(&self) -> f64 {
+        self.b.sqrt().recip()
+    }
+
+    /// `D(θN)` (eq. 4), sr⁻¹.
+    pub fn eval(&self, theta_n: f64) -> f64 {
+        self.a * (-self.b * theta_n * theta_n).exp()
+    }
+
+    /// `∫_hemisphere D(θN) cosθN dΩ` (1 for a normalized distribution).
+    pub fn projected_integral(&self) -> f64 {
+        self.a * 2.0 * PI * half_integral(self.b)
+    }
+}
+
+/// `∫_0^{π/2} exp(−bθ²) sinθ cosθ dθ`, by composite Gauss–Legendre on the support where the
+/// Gaussian is above `e⁻⁶⁰` (so a narrow lobe is resolved as well as a wide one).
+fn half_integral(b: f64) -> f64 {
+    let hi = (60.0 / b).sqrt().min(FRAC_PI_2);
+    integrate(|t| (-b * t * t).exp() * t.sin() * t.cos(), 0.0, hi, 16)
+}
+
+/// The `a` that normalizes `D` over the hemisphere, `a = 1 / (2π ∫_0^{π/2} e^{−bθ²} sinθ cosθ dθ)`
+/// (spec §4). For large `b` (small σ), `a → b/π`; for `b → 0`, `a → 1/π`.
+pub fn normalization(b: f64) -> f64 {
+    1.0 / (2.0 * PI * half_integral(b))
+}

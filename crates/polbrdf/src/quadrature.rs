@@ -1,0 +1,61 @@
+//! Gauss–Legendre quadrature, used for the hemispherical normalization of D (spec §4).
+
+use std::sync::OnceLock;
+
+/// Nodes and weights of the `N`-point Gauss–Legendre rule on [−1, 1], by Newton iteration on
+/// the Legendre polynomial (Golub–Welsch accuracy for small N, no tables to mistype).
+pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut x = vec![0.0; n];
+    let mut w = vec![0.0; n];
+    for i in 0..n.div_ceil(2) {
+        // Tricomi's initial guess for the i-th root.
+        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 0.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0, z);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * z * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            let pn = if n == 0 { 1.0 } else { p1 };
+            let pn1 = if n <= 1 { 1.0 } else { p0 };
+            dp = n as f64 * (z * pn - pn1) / (z * z - 1.0);
+            let dz = pn / dp;
+            z -= dz;
+            if dz.abs() < 1e-16 {
+                break;
+            }
+        }
+        x[i] = -z;
+        x[n - 1 - i] = z;
+        let wi = 2.0 / ((1.0 - z * z) * dp * dp);
+        w[i] = wi;
+        w[n - 1 - i] = wi;
+    }
+    (x, w)
+}
+
+/// The 20-point rule, computed once.
+pub(crate) fn gl20() -> &'static (Vec<f64>, Vec<f64>) {
+    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(20))
+}
+
+/// `∫_lo^hi f` by the 20-point rule on `panels` equal panels.
+pub fn integrate(f: impl Fn(f64) -> f64, lo: f64, hi: f64, panels: usize) -> f64 {
+    let (x, w) = gl20();
+    let h = (hi - lo) / panels as f64;
+    let mut total = 0.0;
+    for p in 0..panels {
+        let mid = lo + (p as f64 + 0.5) * h;
+        let half = 0.5 * h;
+        total += x
+            .iter()
+            .zip(w)
+            .map(|(xi, wi)| wi * f(mid + half * xi))
+            .sum::<f64>()
+            * half;
+    }
+    total
+}

@@ -1,0 +1,6 @@
+//! Integration tests of the core (one test binary, modules by topic).
+
+mod common;
+mod limits;
+mod properties;
+mod vectors;
