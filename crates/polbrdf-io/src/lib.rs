@@ -1,1 +1,14 @@
-//! placeholder
+//! File formats of polbrdf: material files (flat TOML), geometry and result CSV, and atomic
+//! output. Every error names the file, and where it applies the line and the field.
+
+#![warn(missing_docs)]
+
+pub mod csv_io;
+pub mod error;
+pub mod material;
+pub mod write;
+
+pub use csv_io::{read_geometry_csv, GeometryTable};
+pub use error::{Error, Result};
+pub use material::{load_material, material_to_toml, parse_material};
+pub use write::write_atomic;

@@ -1,0 +1,4 @@
+//! Integration tests of the `polbrdf` binary (one test binary, modules by topic).
+
+mod common;
+mod eval;

@@ -1,0 +1,256 @@
+//! Geometry CSV in, result CSV out (the `polbrdf eval` contract in the README).
+
+use crate::error::{Error, Result};
+use polbrdf::{Geometry, Mueller, Stokes};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// The four angle columns every geometry file must have (degrees, any order).
+pub const ANGLE_COLUMNS: [&str; 4] = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"];
+
+/// The columns `polbrdf eval` appends: `brdf, dolp, aolp_deg, m00 … m33`.
+pub fn result_columns() -> Vec<String> {
+    let mut cols = vec!["brdf".to_string(), "dolp".into(), "aolp_deg".into()];
+    cols.extend((0..16).map(|k| format!("m{}{}", k / 4, k % 4)));
+    cols
+}
+
+/// A parsed geometry file: the raw rows (copied through unchanged) and the validated
+/// geometries.
+#[derive(Debug, Clone)]
+pub struct GeometryTable {
+    /// Where it came from (`-` for standard input).
+    pub path: PathBuf,
+    /// Header names as written (surrounding whitespace trimmed).
+    pub headers: Vec<String>,
+    /// Every data row's fields, unchanged.
+    pub rows: Vec<Vec<String>>,
+    /// 1-based line number of each row.
+    pub lines: Vec<usize>,
+    /// One validated geometry per row.
+    pub geometries: Vec<Geometry>,
+}
+
+fn read_all(path: &Path) -> Result<Vec<u8>> {
+    let read_err = |source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    if path.as_os_str() == "-" {
+        let mut buf = Vec::new();
+        std::io::stdin().read_to_end(&mut buf).map_err(read_err)?;
+        Ok(buf)
+    } else {
+        std::fs::read(path).map_err(read_err)
+    }
+}
+
+/// Reads a CSV file whose header names columns, with `required` numeric columns among them.
+/// Returns headers, raw rows, their lines, and for each required column its index.
+pub(crate) fn read_table(
+    path: &Path,
+    required: &[&str],
+) -> Result<(Vec<String>, Vec<Vec<String>>, Vec<usize>, Vec<usize>)> {
+    let bytes = read_all(path)?;
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
+    if let Err(e) = std::str::from_utf8(bytes) {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        return Err(Error::Syntax {
+            path: path.to_path_buf(),
+            line,
+            message: "not valid UTF-8 text (is this a CSV file?)".into(),
+        });
+    }
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::Headers)
+        .flexible(false)
+        .from_reader(bytes);
+    // Physical line of a byte offset (the csv crate's own line count skips blank lines).
+    let line_at = |byte: u64| {
+        bytes[..(byte as usize).min(bytes.len())]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1
+    };
+    let syntax = |e: csv::Error| {
+        let line = e.position().map_or(1, |p| line_at(p.byte()));
+        let message = match e.kind() {
+            csv::ErrorKind::UnequalLengths {
+                expected_len, len, ..
+            } => format!("row has {len} fields, the header has {expected_len}"),
+            _ => e.to_string(),
+        };
+        Error::Syntax {
+            path: path.to_path_buf(),
+            line,
+            message,
+        }
+    };
+    let headers: Vec<String> = reader
+        .headers()
+        .map_err(syntax)?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    if headers.is_empty() || headers.iter().all(String::is_empty) {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "empty file: expected a header line naming the columns {}",
+                required.join(", ")
+            ),
+        });
+    }
+    for (i, h) in headers.iter().enumerate() {
+        if headers[..i].contains(h) {
+            return Err(Error::Syntax {
+                path: path.to_path_buf(),
+                line: 1,
+                message: format!("column `{h}` appears twice in the header"),
+            });
+        }
+    }
+    let missing: Vec<&str> = required
+        .iter()
+        .copied()
+        .filter(|r| !headers.iter().any(|h| h == r))
+        .collect();
+    if !missing.is_empty() {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "missing column(s) {} (the header has: {})",
+                missing.join(", "),
+                headers.join(", ")
+            ),
+        });
+    }
+    let index: Vec<usize> = required
+        .iter()
+        .map(|r| headers.iter().position(|h| h == r).expect("checked above"))
+        .collect();
+    let mut rows = Vec::new();
+    let mut lines = Vec::new();
+    // Count newlines incrementally: rows come in file order.
+    let (mut seen_byte, mut seen_line) = (0usize, 1usize);
+    for record in reader.records() {
+        let record = record.map_err(syntax)?;
+        let mut byte = record
+            .position()
+            .map_or(0, |p| p.byte() as usize)
+            .min(bytes.len());
+        // The recorded position can sit before skipped blank lines.
+        while byte < bytes.len() && matches!(bytes[byte], b'\n' | b'\r') {
+            byte += 1;
+        }
+        seen_line += bytes[seen_byte..byte]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        seen_byte = byte;
+        lines.push(seen_line);
+        rows.push(record.iter().map(str::to_string).collect());
+    }
+    Ok((headers, rows, lines, index))
+}
+
+/// Parses a number in a CSV field (surrounding whitespace allowed).
+pub(crate) fn parse_number(path: &Path, line: usize, column: &str, field: &str) -> Result<f64> {
+    field.trim().parse::<f64>().map_err(|_| Error::Field {
+        path: path.to_path_buf(),
+        line,
+        field: column.to_string(),
+        message: format!("expected a number, got {:?}", truncate(field)),
+    })
+}
+
+fn truncate(s: &str) -> String {
+    if s.chars().count() > 40 {
+        s.chars().take(40).collect::<String>() + "…"
+    } else {
+        s.to_string()
+    }
+}
+
+/// Reads a geometry CSV (`-` = standard input): a header holding `theta_i_deg, phi_i_deg,
+/// theta_r_deg, phi_r_deg` in any order, other columns kept as they are.
+///
+/// # Errors
+/// [`Error::Read`], [`Error::Syntax`] (bad CSV or UTF-8, with the line), [`Error::File`] (empty
+/// file, missing columns), [`Error::Field`] (a non-number or an invalid angle, with line and
+/// column).
+pub fn read_geometry_csv(path: &Path) -> Result<GeometryTable> {
+    let (headers, rows, lines, idx) = read_table(path, &ANGLE_COLUMNS)?;
+    let mut geometries = Vec::with_capacity(rows.len());
+    for (row, &line) in rows.iter().zip(&lines) {
+        let mut deg = [0.0; 4];
+        for (k, d) in deg.iter_mut().enumerate() {
+            *d = parse_number(path, line, ANGLE_COLUMNS[k], &row[idx[k]])?;
+        }
+        let g = Geometry::from_degrees(deg[0], deg[1], deg[2], deg[3]).map_err(|e| {
+            let field = match &e {
+                polbrdf::Error::InvalidAngle { name, .. } => name.to_string(),
+                _ => "angles".to_string(),
+            };
+            Error::Field {
+                path: path.to_path_buf(),
+                line,
+                field,
+                message: e.to_string(),
+            }
+        })?;
+        geometries.push(g);
+    }
+    Ok(GeometryTable {
+        path: path.to_path_buf(),
+        headers,
+        rows,
+        lines,
+        geometries,
+    })
+}
+
+/// Shortest round-trip text of a finite `f64` (`-0.0` printed as `0.0`).
+pub fn fmt_f64(v: f64) -> String {
+    format!("{:?}", v + 0.0)
+}
+
+/// The result CSV of `polbrdf eval`: the input columns unchanged, then `brdf, dolp, aolp_deg,
+/// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's pBRDF in `pbrdf`.
+///
+/// # Errors
+/// [`Error::File`] when an input column has the name of an output column.
+pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> {
+    let extra = result_columns();
+    if let Some(clash) = table.headers.iter().find(|h| extra.contains(h)) {
+        return Err(Error::File {
+            path: table.path.clone(),
+            message: format!("input column `{clash}` has the name of an output column; rename it"),
+        });
+    }
+    let mut w = csv::Writer::from_writer(Vec::with_capacity(64 * (pbrdf.len() + 1) * 19));
+    let csv_err = |e: csv::Error| Error::File {
+        path: table.path.clone(),
+        message: format!("cannot format output: {e}"),
+    };
+    w.write_record(table.headers.iter().chain(extra.iter()))
+        .map_err(csv_err)?;
+    for (row, f) in table.rows.iter().zip(pbrdf) {
+        let s: Stokes = f.apply(&Stokes::unpolarized());
+        let mut fields: Vec<String> = row.clone();
+        fields.push(fmt_f64(f.0[0][0]));
+        fields.push(fmt_f64(s.dolp()));
+        fields.push(fmt_f64(s.aolp().to_degrees()));
+        fields.extend(f.0.iter().flatten().map(|v| fmt_f64(*v)));
+        w.write_record(&fields).map_err(csv_err)?;
+    }
+    w.into_inner().map_err(|e| Error::File {
+        path: table.path.clone(),
+        message: format!("cannot format output: {e}"),
+    })
+}

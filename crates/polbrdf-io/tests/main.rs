@@ -1,0 +1,4 @@
+//! Tests of the file formats (one test binary).
+
+mod csv_files;
+mod material_files;
