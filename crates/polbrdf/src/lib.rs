@@ -45,3 +45,8 @@ pub use model::{Evaluation, Form, Material, MaterialSpec, SurfaceTerms};
 pub use mueller::{Mueller, Stokes};
 pub use presets::preset;
 pub use shadowing::{AzimuthTerm, Shadowing};
+
+/// The README's code blocks, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
