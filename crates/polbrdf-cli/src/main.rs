@@ -2,8 +2,7 @@
 //! 0 success, 1 internal error, 2 usage error, 3 invalid input data, 4 I/O failure.
 
 use clap::{Parser, Subcommand};
-use polbrdf::batch::{self, GeometryBatch};
-use polbrdf::Mueller;
+use polbrdf::batch;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -115,23 +114,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
 fn eval(material: &str, input: &Path, output: Option<&Path>) -> Result<(), CliError> {
     let material = polbrdf_io::load_material(material)?.build()?;
     let table = polbrdf_io::read_geometry_csv(input)?;
-    let angles: [Vec<f64>; 4] = [
-        table.geometries.iter().map(|g| g.theta_i()).collect(),
-        table.geometries.iter().map(|g| g.phi_i()).collect(),
-        table.geometries.iter().map(|g| g.theta_r()).collect(),
-        table.geometries.iter().map(|g| g.phi_r()).collect(),
-    ];
-    let geoms = GeometryBatch::new(&angles[0], &angles[1], &angles[2], &angles[3])?;
-    let pbrdf: Vec<Mueller> = batch::mueller(&material, &geoms)?
-        .into_iter()
-        .map(|m| {
-            let mut rows = [[0.0; 4]; 4];
-            for (k, v) in m.into_iter().enumerate() {
-                rows[k / 4][k % 4] = v;
-            }
-            Mueller(rows)
-        })
-        .collect();
+    let pbrdf = batch::pbrdf_of(&material, &table.geometries);
     let bytes = polbrdf_io::csv_io::results_csv(&table, &pbrdf)?;
     write_output(output, &bytes)
 }

@@ -3,6 +3,7 @@
 use crate::error::{Error, Result};
 use crate::geometry::Geometry;
 use crate::model::Material;
+use crate::mueller::Mueller;
 use rayon::prelude::*;
 
 /// Elements per parallel task: large enough to amortize scheduling, small enough to balance.
@@ -72,8 +73,12 @@ impl<'a> GeometryBatch<'a> {
 
     /// The `i`-th geometry (validated at construction).
     pub fn get(&self, i: usize) -> Geometry {
-        self.geometry_checked(i)
-            .expect("GeometryBatch elements are validated at construction")
+        Geometry::new_unchecked(
+            self.theta_i[i],
+            self.phi_i[i],
+            self.theta_r[i],
+            self.phi_r[i],
+        )
     }
 }
 
@@ -132,6 +137,15 @@ pub fn brdf_dolp_into(
             }
         });
     Ok(())
+}
+
+/// The pBRDF at every geometry of a slice of already validated geometries, in parallel.
+pub fn pbrdf_of(material: &Material, geometries: &[Geometry]) -> Vec<Mueller> {
+    geometries
+        .par_iter()
+        .with_min_len(CHUNK)
+        .map(|g| material.pbrdf(g))
+        .collect()
 }
 
 /// Convenience: the pBRDF at every geometry as a new vector.

@@ -62,6 +62,17 @@ impl Geometry {
         Self::checked(theta_i, phi_i, theta_r, phi_r, None)
     }
 
+    /// For callers that validated the angles already (the batch API).
+    pub(crate) fn new_unchecked(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
+        // `+ 0.0` turns −0.0 into +0.0, as the checked constructor does.
+        Self {
+            theta_i: theta_i + 0.0,
+            phi_i,
+            theta_r: theta_r + 0.0,
+            phi_r,
+        }
+    }
+
     pub(crate) fn checked(
         theta_i: f64,
         phi_i: f64,
