@@ -1,0 +1,42 @@
+//! The command line's error type and its exit codes (documented in the README).
+
+/// What can go wrong, each kind with its exit code.
+#[derive(Debug)]
+pub enum CliError {
+    Io(polbrdf_io::Error),
+    Model(polbrdf::Error),
+    Output(std::io::Error),
+}
+
+impl CliError {
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Io(e) if e.is_data_error() => 3,
+            CliError::Io(_) => 4,
+            CliError::Model(_) => 3,
+            CliError::Output(_) => 4,
+        }
+    }
+}
+
+impl std::fmt::Display for CliError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CliError::Io(e) => write!(f, "{e}"),
+            CliError::Model(e) => write!(f, "{e}"),
+            CliError::Output(e) => write!(f, "cannot write to standard output: {e}"),
+        }
+    }
+}
+
+impl From<polbrdf_io::Error> for CliError {
+    fn from(e: polbrdf_io::Error) -> Self {
+        CliError::Io(e)
+    }
+}
+
+impl From<polbrdf::Error> for CliError {
+    fn from(e: polbrdf::Error) -> Self {
+        CliError::Model(e)
+    }
+}
