@@ -45,12 +45,18 @@ fn read_all(path: &Path) -> Result<Vec<u8>> {
     }
 }
 
-/// Reads a CSV file whose header names columns, with `required` numeric columns among them.
-/// Returns headers, raw rows, their lines, and for each required column its index.
-pub(crate) fn read_table(
-    path: &Path,
-    required: &[&str],
-) -> Result<(Vec<String>, Vec<Vec<String>>, Vec<usize>, Vec<usize>)> {
+/// A CSV file as text fields.
+struct RawTable {
+    headers: Vec<String>,
+    rows: Vec<Vec<String>>,
+    /// 1-based line of each row.
+    lines: Vec<usize>,
+    /// Column index of each required column.
+    index: Vec<usize>,
+}
+
+/// Reads a CSV file whose header names columns, with `required` columns among them.
+fn read_table(path: &Path, required: &[&str]) -> Result<RawTable> {
     let bytes = read_all(path)?;
     let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
     if let Err(e) = std::str::from_utf8(bytes) {
@@ -156,7 +162,12 @@ pub(crate) fn read_table(
         lines.push(seen_line);
         rows.push(record.iter().map(str::to_string).collect());
     }
-    Ok((headers, rows, lines, index))
+    Ok(RawTable {
+        headers,
+        rows,
+        lines,
+        index,
+    })
 }
 
 /// Parses a number in a CSV field (surrounding whitespace allowed).
@@ -185,7 +196,12 @@ fn truncate(s: &str) -> String {
 /// file, missing columns), [`Error::Field`] (a non-number or an invalid angle, with line and
 /// column).
 pub fn read_geometry_csv(path: &Path) -> Result<GeometryTable> {
-    let (headers, rows, lines, idx) = read_table(path, &ANGLE_COLUMNS)?;
+    let RawTable {
+        headers,
+        rows,
+        lines,
+        index: idx,
+    } = read_table(path, &ANGLE_COLUMNS)?;
     let mut geometries = Vec::with_capacity(rows.len());
     for (row, &line) in rows.iter().zip(&lines) {
         let mut deg = [0.0; 4];

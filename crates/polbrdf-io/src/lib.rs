@@ -6,9 +6,11 @@
 pub mod csv_io;
 pub mod error;
 pub mod material;
+pub mod measurements;
 pub mod write;
 
 pub use csv_io::{read_geometry_csv, GeometryTable};
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};
+pub use measurements::{read_measurements_csv, MeasurementTable};
 pub use write::write_atomic;

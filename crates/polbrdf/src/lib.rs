@@ -29,6 +29,7 @@ pub mod error;
 pub mod fresnel;
 pub mod geometry;
 pub mod jones;
+pub mod linalg;
 pub mod model;
 pub mod mueller;
 pub mod presets;

@@ -61,7 +61,8 @@ impl Stokes {
     /// Degree of polarization `sqrt(S1² + S2² + S3²)/S0`; 0 when `S0 ≤ 0`.
     pub fn dop(&self) -> f64 {
         let [s0, s1, s2, s3] = self.0;
-        ratio((s1 * s1 + s2 * s2 + s3 * s3).sqrt(), s0)
+        // hypot: squares of a tiny (or huge) radiance would underflow (overflow).
+        ratio(s1.hypot(s2).hypot(s3), s0)
     }
 
     /// Degree of circular polarization `S3/S0`; 0 when `S0 ≤ 0`.
@@ -239,7 +240,13 @@ impl Mueller {
     /// Eigenvalues of the coherency matrix, ascending. All `≥ 0` (to rounding) for a physically
     /// realizable matrix; their sum is `2·M00`.
     pub fn coherency_eigenvalues(&self) -> [f64; 4] {
-        let c = self.coherency();
+        // The Jacobi iteration's convergence test squares the entries: work on F/max|F_ij| so
+        // that a tiny pBRDF (e.g. D ~ 1e-236 far outside a narrow lobe) or a huge one is not
+        // declared converged before the first rotation, then scale back.
+        let max = self.0.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let finite = self.0.iter().flatten().all(|v| v.is_finite());
+        let scale = if finite && max > 0.0 { max } else { 1.0 };
+        let c = Self(self.0.map(|row| row.map(|v| v / scale))).coherency();
         // Real symmetric 8×8 embedding [[Re C, −Im C], [Im C, Re C]]: each eigenvalue twice.
         let mut m = [[0.0; 8]; 8];
         for p in 0..4 {
@@ -250,9 +257,9 @@ impl Mueller {
                 m[p + 4][q] = c[p][q].im;
             }
         }
-        let mut ev = jacobi_eigenvalues(m);
+        let (mut ev, _) = crate::linalg::symmetric_eigen(m);
         ev.sort_by(f64::total_cmp);
-        [ev[0], ev[2], ev[4], ev[6]]
+        [ev[0], ev[2], ev[4], ev[6]].map(|v| v * scale)
     }
 
     /// True when the coherency matrix is positive semidefinite to within `tol·M00`.
@@ -260,47 +267,6 @@ impl Mueller {
         let scale = self.0[0][0].abs().max(f64::MIN_POSITIVE);
         self.coherency_eigenvalues()[0] >= -tol * scale
     }
-}
-
-/// Cyclic Jacobi eigenvalue iteration for a small real symmetric matrix.
-fn jacobi_eigenvalues<const N: usize>(mut a: [[f64; N]; N]) -> [f64; N] {
-    for _sweep in 0..100 {
-        let off: f64 = (0..N)
-            .flat_map(|p| (0..N).filter(move |&q| q != p).map(move |q| (p, q)))
-            .map(|(p, q)| a[p][q] * a[p][q])
-            .sum();
-        let diag: f64 = (0..N).map(|p| a[p][p] * a[p][p]).sum();
-        if off <= 1e-30 * diag || off == 0.0 {
-            break;
-        }
-        for p in 0..N {
-            for q in p + 1..N {
-                if a[p][q] == 0.0 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for k in 0..N {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for k in 0..N {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-            }
-        }
-    }
-    let mut ev = [0.0; N];
-    for (i, v) in ev.iter_mut().enumerate() {
-        *v = a[i][i];
-    }
-    ev
 }
 
 impl Mul for Mueller {

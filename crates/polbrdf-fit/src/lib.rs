@@ -1,0 +1,20 @@
+//! Parameter inversion for the simplified Maxwell–Beard pBRDF.
+//!
+//! - [`zbs::invert`]: the zero-bistatic inversion of eq. 5 (spec §6): from backscatter BRDF
+//!   measurements and known ρ_D, ρ_V, the samples of D(θN) and `(a, b)` by weighted log-linear
+//!   regression, with standard errors.
+//! - [`fit`]: a Levenberg–Marquardt fit of any subset of the material parameters to any mix of
+//!   measured BRDF, DoLP and Mueller entries, with covariance, correlation and χ².
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod fit;
+pub mod lm;
+pub mod params;
+pub mod synthetic;
+pub mod zbs;
+
+pub use error::FitError;
+pub use fit::{fit, FitOptions, FitResult, Measurement, Observable, Residual};
+pub use params::Param;

@@ -1,0 +1,4 @@
+//! Tests of the inversion (one test binary).
+
+mod general;
+mod zero_bistatic;
