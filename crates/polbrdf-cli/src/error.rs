@@ -6,6 +6,9 @@ pub enum CliError {
     Io(polbrdf_io::Error),
     Model(polbrdf::Error),
     Output(std::io::Error),
+    Fit(polbrdf_fit::FitError),
+    /// The fit ran but did not converge: results were written, flagged.
+    NotConverged(String),
 }
 
 impl CliError {
@@ -15,6 +18,8 @@ impl CliError {
             CliError::Io(_) => 4,
             CliError::Model(_) => 3,
             CliError::Output(_) => 4,
+            CliError::Fit(_) => 3,
+            CliError::NotConverged(_) => 5,
         }
     }
 }
@@ -25,6 +30,12 @@ impl std::fmt::Display for CliError {
             CliError::Io(e) => write!(f, "{e}"),
             CliError::Model(e) => write!(f, "{e}"),
             CliError::Output(e) => write!(f, "cannot write to standard output: {e}"),
+            CliError::Fit(e) => write!(f, "fit: {e}"),
+            CliError::NotConverged(m) => write!(
+                f,
+                "fit did not converge ({m}); the results were written with \"converged\": false — \
+                 try better start values in the material file, more --starts, or fewer free parameters"
+            ),
         }
     }
 }
@@ -38,5 +49,11 @@ impl From<polbrdf_io::Error> for CliError {
 impl From<polbrdf::Error> for CliError {
     fn from(e: polbrdf::Error) -> Self {
         CliError::Model(e)
+    }
+}
+
+impl From<polbrdf_fit::FitError> for CliError {
+    fn from(e: polbrdf_fit::FitError) -> Self {
+        CliError::Fit(e)
     }
 }

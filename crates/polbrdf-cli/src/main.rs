@@ -1,11 +1,13 @@
 //! The `polbrdf` command line. `main` maps every error to a documented exit code:
-//! 0 success, 1 internal error, 2 usage error, 3 invalid input data, 4 I/O failure.
+//! 0 success, 1 internal error, 2 usage error, 3 invalid input data, 4 I/O failure, 5 fit did
+//! not converge.
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 mod error;
 mod eval;
+mod fit;
 mod materials;
 mod output;
 
@@ -37,6 +39,36 @@ enum Command {
         /// Output CSV (written atomically); standard output when absent.
         #[arg(long, value_name = "out.csv")]
         output: Option<PathBuf>,
+    },
+    /// Fit material parameters to measurements (Levenberg–Marquardt), with uncertainties.
+    ///
+    /// Prints a summary on standard error; writes fit.json (parameters with standard errors,
+    /// covariance, correlation, χ²) to --output or standard output. Exit code 5 when the fit
+    /// did not converge (results still written, flagged).
+    Fit {
+        /// Start values and fixed parameters: a TOML file or a preset name.
+        #[arg(long, value_name = "INIT.toml|PRESET")]
+        material: String,
+        /// Measurements: the four angle columns plus any of brdf, dolp, m00 … m33, each
+        /// optionally with sigma_<column> (1-σ). Empty cells mean "not measured".
+        #[arg(long, value_name = "MEAS.csv")]
+        data: PathBuf,
+        /// Free parameters, comma-separated: any of n, k, a, b|sigma_deg, rho_d, rho_v,
+        /// tau_deg, omega_deg.
+        #[arg(long, value_name = "LIST")]
+        free: String,
+        /// fit.json destination (written atomically); standard output when absent.
+        #[arg(long, value_name = "fit.json")]
+        output: Option<PathBuf>,
+        /// Also write the fitted material as a TOML file that `polbrdf eval` loads.
+        #[arg(long, value_name = "fitted.toml")]
+        material_out: Option<PathBuf>,
+        /// Extra starts scattered around the start values (the best fit is kept).
+        #[arg(long, default_value_t = 2)]
+        starts: usize,
+        /// Seed of the extra starts.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
     /// List the built-in materials.
     Materials {
@@ -76,6 +108,23 @@ fn run(cli: Cli) -> Result<(), CliError> {
             input,
             output,
         } => eval::run(&material, &input, output.as_deref()),
+        Command::Fit {
+            material,
+            data,
+            free,
+            output,
+            material_out,
+            starts,
+            seed,
+        } => fit::run(&fit::Args {
+            material: &material,
+            data: &data,
+            free: &free,
+            output: output.as_deref(),
+            material_out: material_out.as_deref(),
+            starts,
+            seed,
+        }),
         Command::Materials { show } => materials::run(show.as_deref()),
     }
 }

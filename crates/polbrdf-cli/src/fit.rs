@@ -1,0 +1,172 @@
+//! `polbrdf fit`: material parameters from measurements, with uncertainties.
+
+use crate::error::CliError;
+use crate::output::write_output;
+use polbrdf_fit::{fit, FitOptions, FitResult, Measurement, Observable, Param};
+use serde_json::{json, Map, Value};
+use std::path::Path;
+
+/// What `polbrdf fit` was asked to do.
+pub struct Args<'a> {
+    pub material: &'a str,
+    pub data: &'a Path,
+    pub free: &'a str,
+    pub output: Option<&'a Path>,
+    pub material_out: Option<&'a Path>,
+    pub starts: usize,
+    pub seed: u64,
+}
+
+/// Runs `polbrdf fit`.
+pub fn run(args: &Args<'_>) -> Result<(), CliError> {
+    let base = polbrdf_io::load_material(args.material)?;
+    let free = Param::parse_list(args.free)?;
+    let table = polbrdf_io::read_measurements_csv(args.data)?;
+    let mut data = Vec::new();
+    for (row, g) in table.geometries.iter().enumerate() {
+        for col in &table.columns {
+            let Some(value) = col.values[row] else {
+                continue;
+            };
+            data.push(Measurement {
+                geometry: *g,
+                observable: Observable::parse(&col.name).expect("measurable column names parse"),
+                value,
+                sigma: col.sigmas.as_ref().and_then(|s| s[row]),
+            });
+        }
+    }
+    let opts = FitOptions {
+        extra_starts: args.starts,
+        seed: args.seed,
+        ..FitOptions::default()
+    };
+    let result = fit(&base, &free, &data, &opts)?;
+
+    let json = serde_json::to_string_pretty(&to_json(&result, args.data))
+        .expect("JSON of finite and null values");
+    eprint!("{}", summary(&result, args.data, data.len()));
+    write_output(args.output, (json + "\n").as_bytes())?;
+    if let Some(path) = args.material_out {
+        let mut spec = result.spec.clone();
+        spec.name = Some(format!(
+            "{} (fitted to {})",
+            base.name.as_deref().unwrap_or("material"),
+            args.data.display()
+        ));
+        polbrdf_io::write_atomic(path, polbrdf_io::material_to_toml(&spec).as_bytes())?;
+    }
+    if !result.converged {
+        return Err(CliError::NotConverged(result.message));
+    }
+    Ok(())
+}
+
+fn matrix(m: &[Vec<f64>]) -> Value {
+    Value::from(m.to_vec())
+}
+
+/// The `fit.json` document (contract in the README).
+fn to_json(r: &FitResult, data: &Path) -> Value {
+    let mut params = Map::new();
+    for (k, p) in r.params.iter().enumerate() {
+        params.insert(
+            p.name().to_string(),
+            json!({"value": r.values[k], "stderr": r.stderr[k]}),
+        );
+    }
+    let zbs = r.zero_bistatic.as_ref().map(|z| {
+        json!({"a": z.a, "stderr_a": z.stderr_a, "b": z.b, "stderr_b": z.stderr_b,
+               "correlation_ab": z.correlation_ab, "points_used": z.samples.len(),
+               "points_excluded": z.excluded})
+    });
+    json!({
+        "parameters": params,
+        "parameter_order": r.params.iter().map(|p| p.name()).collect::<Vec<_>>(),
+        "covariance": matrix(&r.covariance),
+        "correlation": matrix(&r.correlation),
+        "chi2": r.chi2,
+        "reduced_chi2": r.reduced_chi2,
+        "dof": r.dof,
+        "uncertainty_from_residuals": r.scaled_by_residuals,
+        "converged": r.converged,
+        "iterations": r.iterations,
+        "message": r.message,
+        "starts": {"tried": r.starts.0, "reached_best": r.starts.1},
+        "zero_bistatic": zbs,
+        "data": data.display().to_string(),
+        "measurements": r.residuals.len(),
+    })
+}
+
+/// The one-screen summary printed on the terminal.
+fn summary(r: &FitResult, data: &Path, n: usize) -> String {
+    let mut s = format!(
+        "polbrdf fit: {} measurement(s) from {}, {} free parameter(s)\n",
+        n,
+        data.display(),
+        r.params.len()
+    );
+    s += &format!(
+        "  {}: {} after {} iterations; {} of {} start(s) reached the best χ²\n",
+        if r.converged {
+            "converged"
+        } else {
+            "NOT CONVERGED"
+        },
+        r.message,
+        r.iterations,
+        r.starts.1,
+        r.starts.0
+    );
+    s += &format!(
+        "  χ² = {:.6e}, dof = {}, χ²/dof = {:.4}{}\n\n",
+        r.chi2,
+        r.dof,
+        r.reduced_chi2,
+        if r.scaled_by_residuals {
+            " (no σ given for some values: uncertainties scaled by χ²/dof)"
+        } else {
+            ""
+        }
+    );
+    s += &format!(
+        "  {:<10} {:>16} {:>14} {:>10}\n",
+        "parameter", "value", "std. error", "rel."
+    );
+    for (k, p) in r.params.iter().enumerate() {
+        s += &format!(
+            "  {:<10} {:>16.8e} {:>14.3e} {:>9.2}%\n",
+            p.name(),
+            r.values[k],
+            r.stderr[k],
+            100.0 * r.stderr[k] / r.values[k].abs().max(f64::MIN_POSITIVE)
+        );
+    }
+    if r.params.len() > 1 {
+        s += "\n  correlation:\n";
+        for (k, p) in r.params.iter().enumerate() {
+            s += &format!("  {:<10}", p.name());
+            for c in &r.correlation[k] {
+                s += &format!(" {c:>7.3}");
+            }
+            s += "\n";
+        }
+    }
+    if let Some(z) = &r.zero_bistatic {
+        s += &format!(
+            "\n  zero-bistatic start (eq. 5 with the start values of n, k, ρ_D, ρ_V): a = {:.4} ± {:.2e} sr⁻¹,\n    b = {:.4} ± {:.2e} rad⁻² ({} backscatter points{})\n",
+            z.a,
+            z.stderr_a,
+            z.b,
+            z.stderr_b,
+            z.samples.len(),
+            if z.excluded.is_empty() {
+                String::new()
+            } else {
+                format!(", {} excluded: within noise of the volume term", z.excluded.len())
+            }
+        );
+    }
+    s
+}

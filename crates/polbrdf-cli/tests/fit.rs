@@ -1,0 +1,128 @@
+//! `polbrdf fit` on the shipped example, and its refusals.
+
+use crate::common::{polbrdf, stderr, write};
+use serde_json::Value;
+
+fn example(name: &str) -> String {
+    format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn the_readme_example_recovers_the_known_paint() {
+    let dir = tempfile::tempdir().unwrap();
+    let json_path = dir.path().join("fit.json");
+    let toml_path = dir.path().join("fitted.toml");
+    let out = polbrdf(&[
+        "fit",
+        "--material",
+        &example("paint-init.toml"),
+        "--data",
+        &example("paint-goniometer.csv"),
+        "--free",
+        "n,sigma_deg,rho_d,rho_v",
+        "--output",
+        json_path.to_str().unwrap(),
+        "--material-out",
+        toml_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("converged"),
+        "summary on the terminal"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    // The data were generated from n = 1.58, σ = 11°, ρ_D = 0.025, ρ_V = 0.012 with noise.
+    for (name, truth) in [
+        ("n", 1.58),
+        ("sigma_deg", 11.0),
+        ("rho_d", 0.025),
+        ("rho_v", 0.012),
+    ] {
+        let p = &v["parameters"][name];
+        let (value, se) = (p["value"].as_f64().unwrap(), p["stderr"].as_f64().unwrap());
+        assert!(
+            (value - truth).abs() < 4.0 * se,
+            "{name} = {value} ± {se}, truth {truth}"
+        );
+    }
+    for key in [
+        "covariance",
+        "correlation",
+        "chi2",
+        "reduced_chi2",
+        "dof",
+        "converged",
+        "iterations",
+        "message",
+    ] {
+        assert!(!v[key].is_null(), "fit.json has {key}");
+    }
+    assert_eq!(v["covariance"].as_array().unwrap().len(), 4);
+    assert_eq!(v["converged"], Value::Bool(true));
+    // The fitted material loads back into eval.
+    let geo = write(
+        dir.path(),
+        "g.csv",
+        "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,180\n",
+    );
+    let out = polbrdf(&[
+        "eval",
+        "--material",
+        toml_path.to_str().unwrap(),
+        "--input",
+        &geo,
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+#[test]
+fn refusals_are_clear_with_exit_code_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let two = write(
+        dir.path(),
+        "two.csv",
+        "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n30,0,30,180,1.0\n40,0,40,180,2.0\n",
+    );
+    let cases: [(&str, &str, &str); 4] = [
+        (&two, "n,sigma_deg,rho_d", "too few measurements"),
+        (&two, "n,colour", "unknown parameter `colour`"),
+        (&two, "b,sigma_deg", "same roughness"),
+        (&example("paint-goniometer.csv"), "n,n", "twice"),
+    ];
+    for (data, free, fragment) in cases {
+        let out = polbrdf(&["fit", "--material", "paint", "--data", data, "--free", free]);
+        assert_eq!(out.status.code(), Some(3), "{free}: {}", stderr(&out));
+        assert!(stderr(&out).contains(fragment), "{free}: {}", stderr(&out));
+    }
+    // Every point specular at one angle: the roughness has no effect when `a` is free.
+    let spec = write(
+        dir.path(),
+        "spec.csv",
+        &("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n".to_string()
+            + &"40,0,40,180,3.0\n".repeat(8)),
+    );
+    let out = polbrdf(&[
+        "fit",
+        "--material",
+        "paint",
+        "--data",
+        &spec,
+        "--free",
+        "a,sigma_deg",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    assert!(stderr(&out).contains("sigma_deg") && stderr(&out).contains("cannot be determined"));
+    // A malformed row is an error with its line, never dropped.
+    let bad = write(
+        dir.path(),
+        "bad.csv",
+        "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf,sigma_brdf\n30,0,30,180,1.0,0.1\n40,0,40,180,2.0,0\n",
+    );
+    let out = polbrdf(&["fit", "--material", "paint", "--data", &bad, "--free", "n"]);
+    assert_eq!(out.status.code(), Some(3));
+    assert!(
+        stderr(&out).contains("bad.csv:3") && stderr(&out).contains("sigma_brdf"),
+        "{}",
+        stderr(&out)
+    );
+}
