@@ -7,6 +7,7 @@ pub enum CliError {
     Model(polbrdf::Error),
     Output(std::io::Error),
     Fit(polbrdf_fit::FitError),
+    Reproduce(polbrdf_reproduce::Error),
     /// The fit ran but did not converge: results were written, flagged.
     NotConverged(String),
 }
@@ -19,6 +20,8 @@ impl CliError {
             CliError::Model(_) => 3,
             CliError::Output(_) => 4,
             CliError::Fit(_) => 3,
+            CliError::Reproduce(polbrdf_reproduce::Error::Io { .. }) => 4,
+            CliError::Reproduce(_) => 1,
             CliError::NotConverged(_) => 5,
         }
     }
@@ -31,6 +34,7 @@ impl std::fmt::Display for CliError {
             CliError::Model(e) => write!(f, "{e}"),
             CliError::Output(e) => write!(f, "cannot write to standard output: {e}"),
             CliError::Fit(e) => write!(f, "fit: {e}"),
+            CliError::Reproduce(e) => write!(f, "reproduce: {e}"),
             CliError::NotConverged(m) => write!(
                 f,
                 "fit did not converge ({m}); the results were written with \"converged\": false — \
@@ -55,5 +59,11 @@ impl From<polbrdf::Error> for CliError {
 impl From<polbrdf_fit::FitError> for CliError {
     fn from(e: polbrdf_fit::FitError) -> Self {
         CliError::Fit(e)
+    }
+}
+
+impl From<polbrdf_reproduce::Error> for CliError {
+    fn from(e: polbrdf_reproduce::Error) -> Self {
+        CliError::Reproduce(e)
     }
 }

@@ -10,6 +10,7 @@ mod eval;
 mod fit;
 mod materials;
 mod output;
+mod reproduce;
 
 use error::CliError;
 use std::process::ExitCode;
@@ -70,6 +71,13 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Regenerate the paper's Figs. 2–5 and Table 1 (PNG, SVG, CSV) with report.md, which
+    /// checks each of the paper's claims against the computation.
+    Reproduce {
+        /// Output directory (created if missing).
+        #[arg(long, value_name = "DIR", default_value = "reproduce-out")]
+        out: PathBuf,
+    },
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -125,6 +133,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
             starts,
             seed,
         }),
+        Command::Reproduce { out } => reproduce::run(&out),
         Command::Materials { show } => materials::run(show.as_deref()),
     }
 }

@@ -23,6 +23,7 @@
 
 #![warn(missing_docs)]
 
+pub mod albedo;
 pub mod batch;
 pub mod distribution;
 pub mod error;
@@ -36,6 +37,7 @@ pub mod presets;
 pub mod quadrature;
 pub mod shadowing;
 
+pub use albedo::{directional_hemispherical, Albedo};
 pub use batch::GeometryBatch;
 pub use distribution::Distribution;
 pub use error::{Error, Result};

@@ -1,5 +1,6 @@
 //! Integration tests of the core (one test binary, modules by topic).
 
+mod albedo;
 mod common;
 mod limits;
 mod properties;

@@ -1,0 +1,321 @@
+//! The figures, as declarations for [`crate::plot`].
+
+use crate::analysis::Analysis;
+use crate::params::*;
+use crate::plot::{Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
+use plotters::style::RGBColor;
+
+const BLACK: RGBColor = RGBColor(0, 0, 0);
+const GREY: RGBColor = RGBColor(90, 90, 90);
+
+fn brewster_deg() -> f64 {
+    N.atan().to_degrees()
+}
+
+fn roughness_label(r: f64) -> String {
+    if r == 0.0 {
+        "σ → 0 (smooth)".into()
+    } else {
+        format!("σ = {r:.1} rad ({:.1}°)", r.to_degrees())
+    }
+}
+
+/// Fig. 2: BRDF vs θN (log axis) and the shadowing factor.
+pub fn fig2(a: &Analysis) -> Figure {
+    let f = &a.fig2;
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for c in &f.brdf {
+        for &v in c {
+            lo = lo.min(v.log10());
+            hi = hi.max(v.log10());
+        }
+    }
+    let lines_a = f
+        .thetas_deg
+        .iter()
+        .zip(&f.brdf)
+        .enumerate()
+        .map(|(i, (t, c))| Line {
+            label: format!("θi = θr = {t:.0}°"),
+            points: f
+                .theta_n_deg
+                .iter()
+                .zip(c)
+                .map(|(&x, &y)| (x, y.log10()))
+                .collect(),
+            color: PALETTE[i],
+            dashed: false,
+            width: 2,
+        })
+        .collect();
+    let mut lines_b: Vec<Line> = f
+        .thetas_deg
+        .iter()
+        .enumerate()
+        .map(|(i, t)| Line {
+            label: format!("θi = θr = {t:.0}°"),
+            points: f
+                .theta_n_deg
+                .iter()
+                .zip(f.brdf[i].iter().zip(&f.brdf_no_shadow[i]))
+                .map(|(&x, (&on, &off))| (x, on / off))
+                .collect(),
+            color: PALETTE[i],
+            dashed: false,
+            width: 2,
+        })
+        .collect();
+    lines_b.push(Line {
+        label: "shadowing off (every θi)".into(),
+        points: vec![(0.0, 1.0), (FIG2_THETA_N_MAX_DEG, 1.0)],
+        color: BLACK,
+        dashed: true,
+        width: 2,
+    });
+    Figure {
+        size: (1700, 760),
+        panels: vec![
+            Panel {
+                title: format!(
+                    "(a) BRDF, eq. 6, specular (β = θi), σ = {FIG2_SIGMA_DEG:.0}°, n = {N}"
+                ),
+                x_desc: "facet tilt θN (deg)".into(),
+                y_desc: "BRDF f (sr⁻¹), log scale".into(),
+                x_range: (0.0, FIG2_THETA_N_MAX_DEG),
+                y_range: (lo.floor(), hi.ceil() + 1.0),
+                log_y: true,
+                x_ticks: 7,
+                y_ticks: 20,
+                lines: lines_a,
+                markers: vec![],
+                vlines: vec![],
+                legend: LegendAt::UpperRight,
+            },
+            Panel {
+                title: "(b) shadowing: f / f(shadowing off) = SO(θN, β = θi)".into(),
+                x_desc: "facet tilt θN (deg)".into(),
+                y_desc: "ratio to the unshadowed BRDF".into(),
+                x_range: (0.0, FIG2_THETA_N_MAX_DEG),
+                y_range: (0.3, 1.05),
+                log_y: false,
+                x_ticks: 7,
+                y_ticks: 9,
+                lines: lines_b,
+                markers: vec![],
+                vlines: vec![],
+                legend: LegendAt::LowerLeft,
+            },
+        ],
+    }
+}
+
+/// Fig. 3: smooth-surface DoLP vs incidence angle, with Table 1's row 0 for comparison.
+pub fn fig3(a: &Analysis) -> Figure {
+    let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
+        TABLE_ANGLES_DEG
+            .iter()
+            .zip(&t[0])
+            .map(|(&x, &y)| (x, y / 100.0))
+            .collect()
+    };
+    Figure {
+        size: (1100, 760),
+        panels: vec![Panel {
+            title: format!("DoLP of specular reflection, smooth surface, n = {N}"),
+            x_desc: "incidence angle θi = θr (deg)".into(),
+            y_desc: "DoLP (unpolarized input)".into(),
+            x_range: (0.0, 90.0),
+            y_range: (0.0, 1.08),
+            log_y: false,
+            x_ticks: 10,
+            y_ticks: 12,
+            lines: vec![Line {
+                label: "this model (Fresnel, eq. 9–13)".into(),
+                points: a.fig3.clone(),
+                color: PALETTE[0],
+                dashed: false,
+                width: 2,
+            }],
+            markers: vec![
+                Markers {
+                    label: "paper's Table 1, roughness 0 (its model)".into(),
+                    points: row0(&TABLE_PAPER_MODEL),
+                    colors: vec![PALETTE[3]; 5],
+                    legend_color: PALETTE[3],
+                    marker: Marker::Disc,
+                },
+                Markers {
+                    label: "paper's Table 1, roughness 0 (Lawrence/Wolff)".into(),
+                    points: row0(&TABLE_PAPER_LAWRENCE),
+                    colors: vec![GREY; 5],
+                    legend_color: GREY,
+                    marker: Marker::Square,
+                },
+            ],
+            vlines: vec![(brewster_deg(), format!(" Brewster {:.2}°", brewster_deg()))],
+            legend: LegendAt::UpperLeft,
+        }],
+    }
+}
+
+/// Fig. 4: DoLP vs incidence angle for the roughness values (primary interpretation).
+pub fn fig4(a: &Analysis) -> Figure {
+    let lines = ROUGHNESS
+        .iter()
+        .zip(&a.fig4)
+        .enumerate()
+        .map(|(i, (&r, c))| Line {
+            label: roughness_label(r),
+            points: a
+                .dolp_angles
+                .iter()
+                .copied()
+                .zip(c.iter().copied())
+                .collect(),
+            color: PALETTE[i],
+            dashed: false,
+            width: 2,
+        })
+        .collect();
+    Figure {
+        size: (1100, 760),
+        panels: vec![Panel {
+            title: format!(
+                "DoLP at specular, roughness = σ of D, volume term ρD = {RHO_D}, ρV = {RHO_V} sr⁻¹"
+            ),
+            x_desc: "incidence angle θi = θr (deg)".into(),
+            y_desc: "DoLP (unpolarized input)".into(),
+            x_range: (0.0, 90.0),
+            y_range: (0.0, 1.08),
+            log_y: false,
+            x_ticks: 10,
+            y_ticks: 12,
+            lines,
+            markers: vec![],
+            vlines: vec![(brewster_deg(), format!(" Brewster {:.2}°", brewster_deg()))],
+            legend: LegendAt::UpperLeft,
+        }],
+    }
+}
+
+/// Fig. 5: our curves over Table 1's points, and the smooth-row hypotheses.
+pub fn fig5(a: &Analysis) -> Figure {
+    let lines_a: Vec<Line> = ROUGHNESS
+        .iter()
+        .zip(&a.fig4)
+        .enumerate()
+        .map(|(i, (&r, c))| Line {
+            label: format!("ours, {}", roughness_label(r)),
+            points: a
+                .dolp_angles
+                .iter()
+                .zip(c)
+                .map(|(&x, &y)| (x, 100.0 * y))
+                .collect(),
+            color: PALETTE[i],
+            dashed: false,
+            width: 2,
+        })
+        .collect();
+    let table_points = |t: &[[f64; 5]; 6]| -> (Vec<(f64, f64)>, Vec<RGBColor>) {
+        let mut pts = Vec::new();
+        let mut cols = Vec::new();
+        for (i, row) in t.iter().enumerate() {
+            for (&x, &y) in TABLE_ANGLES_DEG.iter().zip(row) {
+                // Rows spread by 0.4° each so that equal values stay visible.
+                pts.push((x + 0.4 * (i as f64 - 2.5), y));
+                cols.push(PALETTE[i]);
+            }
+        }
+        (pts, cols)
+    };
+    let (pm, cm) = table_points(&TABLE_PAPER_MODEL);
+    let (pl, cl) = table_points(&TABLE_PAPER_LAWRENCE);
+    let shift = |v: Vec<(f64, f64)>, dx: f64| v.into_iter().map(|(x, y)| (x + dx, y)).collect();
+    let markers_a = vec![
+        Markers {
+            label: "paper's model (Table 1)".into(),
+            points: shift(pm, -1.3),
+            colors: cm,
+            legend_color: BLACK,
+            marker: Marker::Disc,
+        },
+        Markers {
+            label: "Lawrence/Wolff (Table 1)".into(),
+            points: shift(pl, 1.3),
+            colors: cl,
+            legend_color: BLACK,
+            marker: Marker::Square,
+        },
+    ];
+    let hyp_colors = [PALETTE[0], PALETTE[0], PALETTE[1], PALETTE[1]];
+    let lines_b = a
+        .hypothesis_curves
+        .iter()
+        .enumerate()
+        .map(|(i, (label, y))| Line {
+            label: label.clone(),
+            points: a
+                .dolp_angles
+                .iter()
+                .zip(y)
+                .map(|(&x, &v)| (x, 100.0 * v))
+                .collect(),
+            color: hyp_colors[i],
+            dashed: i % 2 == 1,
+            width: 2,
+        })
+        .collect();
+    let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
+        TABLE_ANGLES_DEG.iter().copied().zip(t[0]).collect()
+    };
+    Figure {
+        size: (1800, 780),
+        panels: vec![
+            Panel {
+                title: "(a) ours (lines) vs Table 1 (markers, same colour = same roughness)".into(),
+                x_desc: "incidence angle θi = θr (deg)".into(),
+                y_desc: "DoLP (%)".into(),
+                x_range: (0.0, 90.0),
+                y_range: (0.0, 108.0),
+                log_y: false,
+                x_ticks: 10,
+                y_ticks: 12,
+                lines: lines_a,
+                markers: markers_a,
+                vlines: vec![],
+                legend: LegendAt::UpperLeft,
+            },
+            Panel {
+                title: "(b) Table 1 roughness-0 row vs smooth-surface hypotheses".into(),
+                x_desc: "incidence (reflection) or emission angle θ (deg)".into(),
+                y_desc: "DoLP (%)".into(),
+                x_range: (0.0, 90.0),
+                y_range: (0.0, 108.0),
+                log_y: false,
+                x_ticks: 10,
+                y_ticks: 12,
+                lines: lines_b,
+                markers: vec![
+                    Markers {
+                        label: "Table 1 row 0, paper's model".into(),
+                        points: row0(&TABLE_PAPER_MODEL),
+                        colors: vec![PALETTE[3]; 5],
+                        legend_color: PALETTE[3],
+                        marker: Marker::Disc,
+                    },
+                    Markers {
+                        label: "Table 1 row 0, Lawrence/Wolff".into(),
+                        points: row0(&TABLE_PAPER_LAWRENCE),
+                        colors: vec![GREY; 5],
+                        legend_color: GREY,
+                        marker: Marker::Square,
+                    },
+                ],
+                vlines: vec![],
+                legend: LegendAt::UpperLeft,
+            },
+        ],
+    }
+}

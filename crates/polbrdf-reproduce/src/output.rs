@@ -1,0 +1,72 @@
+//! The crate's error type and atomic file output.
+
+use std::path::{Path, PathBuf};
+
+/// Everything [`crate::run`] can fail with.
+#[non_exhaustive]
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Creating the output directory or writing/renaming a file failed.
+    #[error("cannot write {}: {source}", path.display())]
+    Io {
+        /// The file or directory concerned.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// Drawing a figure failed.
+    #[error("cannot draw {}: {message}", path.display())]
+    Plot {
+        /// The figure file concerned.
+        path: PathBuf,
+        /// What the plotting library reported.
+        message: String,
+    },
+    /// The embedded font could not be loaded (a build problem, not a user error).
+    #[error("the embedded font DejaVuSans.ttf could not be loaded")]
+    Font,
+    /// The core model refused a parameter (a bug in this crate's constants).
+    #[error("model error: {0}")]
+    Model(#[from] polbrdf::Error),
+}
+
+/// Writes `bytes` to `path` atomically (`polbrdf_io::write_atomic`).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    polbrdf_io::write_atomic(path, bytes).map_err(|e| Error::Io {
+        path: path.to_path_buf(),
+        source: match e {
+            polbrdf_io::Error::Write { source, .. } => source,
+            other => std::io::Error::other(other.to_string()),
+        },
+    })
+}
+
+/// A CSV document built row by row (numbers only, comma-separated, header first).
+pub struct Csv {
+    text: String,
+}
+
+impl Csv {
+    /// Starts a document with the given header columns.
+    pub fn new(header: &[&str]) -> Self {
+        let mut text = header.join(",");
+        text.push('\n');
+        Self { text }
+    }
+
+    /// Appends one row; every value in shortest round-trip form (`polbrdf_io::csv_io::fmt_f64`).
+    pub fn row(&mut self, values: &[f64]) {
+        let cells: Vec<String> = values
+            .iter()
+            .map(|v| polbrdf_io::csv_io::fmt_f64(*v))
+            .collect();
+        self.text.push_str(&cells.join(","));
+        self.text.push('\n');
+    }
+
+    /// The document.
+    pub fn as_bytes(&self) -> &[u8] {
+        self.text.as_bytes()
+    }
+}

@@ -1,0 +1,368 @@
+//! Figures: a small declarative layer over `plotters`, drawn once into a PNG (bitmap backend,
+//! text rendered with the embedded DejaVu Sans through `ab_glyph`) and once into an SVG.
+
+use crate::output::{write_atomic, Error};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::OnceLock;
+
+type PlotResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
+
+/// DejaVu Sans 2.37 (Bitstream Vera / Arev license, see `assets/DejaVuSans-LICENSE.txt`).
+static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+const FAMILY: &str = "sans-serif";
+
+/// Registers the embedded font for every style plotters may ask for (once per process).
+fn register_font() -> Result<(), Error> {
+    static DONE: OnceLock<bool> = OnceLock::new();
+    let ok = *DONE.get_or_init(|| {
+        [
+            FontStyle::Normal,
+            FontStyle::Bold,
+            FontStyle::Italic,
+            FontStyle::Oblique,
+        ]
+        .into_iter()
+        .all(|style| plotters::style::register_font(FAMILY, style, FONT).is_ok())
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::Font)
+    }
+}
+
+/// Distinct colours (Matplotlib's "tab10").
+pub const PALETTE: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// One line.
+#[derive(Debug, Clone)]
+pub struct Line {
+    /// Legend text (empty: no legend entry).
+    pub label: String,
+    /// Points in data coordinates.
+    pub points: Vec<(f64, f64)>,
+    /// Colour.
+    pub color: RGBColor,
+    /// Dashed instead of solid.
+    pub dashed: bool,
+    /// Stroke width in pixels.
+    pub width: u32,
+}
+
+/// Marker shapes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Marker {
+    /// Filled disc.
+    Disc,
+    /// Open square (drawn around a coinciding disc, so both stay visible).
+    Square,
+}
+
+/// A set of markers.
+#[derive(Debug, Clone)]
+pub struct Markers {
+    /// Legend text (empty: no legend entry).
+    pub label: String,
+    /// Points in data coordinates.
+    pub points: Vec<(f64, f64)>,
+    /// Colour of each point (one per point).
+    pub colors: Vec<RGBColor>,
+    /// Colour of the legend sample.
+    pub legend_color: RGBColor,
+    /// Shape.
+    pub marker: Marker,
+}
+
+/// Where the legend goes.
+#[derive(Debug, Clone, Copy)]
+pub enum LegendAt {
+    /// Upper left corner.
+    UpperLeft,
+    /// Upper right corner.
+    UpperRight,
+    /// Lower left corner.
+    LowerLeft,
+}
+
+/// One chart.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// Caption above the chart.
+    pub title: String,
+    /// x axis description (with unit).
+    pub x_desc: String,
+    /// y axis description (with unit).
+    pub y_desc: String,
+    /// x range.
+    pub x_range: (f64, f64),
+    /// y range (in log10 units when `log_y`).
+    pub y_range: (f64, f64),
+    /// y data are log10 of the quantity; ticks are labelled as powers of ten.
+    pub log_y: bool,
+    /// Approximate number of x tick labels.
+    pub x_ticks: usize,
+    /// Approximate number of y tick labels.
+    pub y_ticks: usize,
+    /// Lines.
+    pub lines: Vec<Line>,
+    /// Marker sets.
+    pub markers: Vec<Markers>,
+    /// Vertical reference lines: x, label.
+    pub vlines: Vec<(f64, String)>,
+    /// Legend position.
+    pub legend: LegendAt,
+}
+
+/// A figure of one or more panels side by side.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// Pixel size of the PNG (the SVG uses the same user units).
+    pub size: (u32, u32),
+    /// Panels, left to right.
+    pub panels: Vec<Panel>,
+}
+
+/// `10ⁿ` with Unicode superscripts.
+pub fn power_of_ten(k: i32) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::from("10");
+    if k < 0 {
+        s.push('⁻');
+    }
+    for c in k.unsigned_abs().to_string().chars() {
+        s.push(SUP[c.to_digit(10).unwrap_or(0) as usize]);
+    }
+    s
+}
+
+/// Lines are drawn through at most this many points: wide strokes through one point per pixel
+/// come out jagged in the bitmap backend. The CSV files keep every point.
+const MAX_LINE_POINTS: usize = 200;
+
+/// Every k-th point (and the last), keeping at most about `max` points.
+fn decimate(points: &[(f64, f64)], max: usize) -> Vec<(f64, f64)> {
+    if points.len() <= max {
+        return points.to_vec();
+    }
+    let k = points.len().div_ceil(max);
+    let mut out: Vec<(f64, f64)> = points.iter().step_by(k).copied().collect();
+    if let Some(&last) = points.last() {
+        if out.last() != Some(&last) {
+            out.push(last);
+        }
+    }
+    out
+}
+
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> PlotResult
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(&p.title, (FAMILY, 24))
+        .margin(14)
+        .margin_right(28)
+        .x_label_area_size(62)
+        .y_label_area_size(if p.log_y { 92 } else { 82 })
+        .build_cartesian_2d(p.x_range.0..p.x_range.1, p.y_range.0..p.y_range.1)?;
+
+    let y_fmt = |v: &f64| {
+        if p.log_y {
+            let k = v.round();
+            if (v - k).abs() < 1e-9 {
+                power_of_ten(k as i32)
+            } else {
+                String::new()
+            }
+        } else {
+            let s = format!("{v:.3}");
+            let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+            if s == "-0" {
+                "0".into()
+            } else {
+                s
+            }
+        }
+    };
+    let x_fmt = |v: &f64| {
+        let s = format!("{v:.2}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    chart
+        .configure_mesh()
+        .x_desc(&p.x_desc)
+        .y_desc(&p.y_desc)
+        .x_labels(p.x_ticks)
+        .y_labels(p.y_ticks)
+        .x_label_formatter(&x_fmt)
+        .y_label_formatter(&y_fmt)
+        .axis_desc_style((FAMILY, 22))
+        .label_style((FAMILY, 18))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(200, 200, 200))
+        .draw()?;
+
+    for (x, label) in &p.vlines {
+        let (y0, y1) = p.y_range;
+        chart.draw_series(DashedLineSeries::new(
+            [(*x, y0), (*x, y1)],
+            8,
+            6,
+            ShapeStyle::from(&BLACK.mix(0.6)).stroke_width(2),
+        ))?;
+        chart.draw_series(std::iter::once(Text::new(
+            label.clone(),
+            (*x, y1 - 0.03 * (y1 - y0)),
+            (FAMILY, 18).into_font().color(&BLACK.mix(0.8)),
+        )))?;
+    }
+
+    let mut any_label = false;
+    for l in &p.lines {
+        let style = ShapeStyle::from(&l.color).stroke_width(l.width);
+        let points = decimate(&l.points, MAX_LINE_POINTS);
+        let anno = if l.dashed {
+            chart.draw_series(DashedLineSeries::new(points, 10, 6, style))?
+        } else {
+            chart.draw_series(LineSeries::new(points, style))?
+        };
+        if !l.label.is_empty() {
+            any_label = true;
+            let dashed = l.dashed;
+            anno.label(&l.label).legend(move |(x, y)| {
+                if dashed {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (9, 0)], style)
+                        + PathElement::new(vec![(14, 0), (24, 0)], style)
+                } else {
+                    // Same element type as the dashed branch: a full segment plus an empty one.
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (24, 0)], style)
+                        + PathElement::new(vec![(24, 0), (24, 0)], style)
+                }
+            });
+        }
+    }
+
+    for m in &p.markers {
+        let shape = m.marker;
+        let pts = m.points.iter().zip(&m.colors);
+        let anno = match shape {
+            Marker::Disc => {
+                chart.draw_series(pts.map(|(&(x, y), &c)| Circle::new((x, y), 5, c.filled())))?
+            }
+            Marker::Square => chart.draw_series(pts.map(|(&(x, y), &c)| {
+                EmptyElement::at((x, y))
+                    + Rectangle::new([(-8, -8), (8, 8)], ShapeStyle::from(&c).stroke_width(2))
+            }))?,
+        };
+        if !m.label.is_empty() {
+            any_label = true;
+            let c = m.legend_color;
+            let anno = anno.label(&m.label);
+            match shape {
+                Marker::Disc => {
+                    anno.legend(move |(x, y)| {
+                        EmptyElement::at((x + 12, y)) + Circle::new((0, 0), 5, c.filled())
+                    });
+                }
+                Marker::Square => {
+                    anno.legend(move |(x, y)| {
+                        EmptyElement::at((x + 12, y))
+                            + Rectangle::new(
+                                [(-8, -8), (8, 8)],
+                                ShapeStyle::from(&c).stroke_width(2),
+                            )
+                    });
+                }
+            }
+        }
+    }
+
+    if any_label {
+        let pos = match p.legend {
+            LegendAt::UpperLeft => SeriesLabelPosition::UpperLeft,
+            LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
+            LegendAt::LowerLeft => SeriesLabelPosition::LowerLeft,
+        };
+        chart
+            .configure_series_labels()
+            .position(pos)
+            .margin(12)
+            .legend_area_size(34)
+            .label_font((FAMILY, 18))
+            .background_style(WHITE.mix(0.88))
+            .border_style(RGBColor(120, 120, 120))
+            .draw()?;
+    }
+    Ok(())
+}
+
+fn draw_figure<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, fig: &Figure) -> PlotResult
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let areas = root.split_evenly((1, fig.panels.len().max(1)));
+    for (area, panel) in areas.iter().zip(&fig.panels) {
+        draw_panel(area, panel)?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// Draws `fig` into `dir/stem.png` and `dir/stem.svg`, each written atomically; returns both
+/// paths.
+pub fn render(fig: &Figure, dir: &Path, stem: &str) -> Result<Vec<std::path::PathBuf>, Error> {
+    register_font()?;
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+
+    // PNG: draw into an RGB buffer, encode in memory, then write atomically.
+    let (w, h) = fig.size;
+    let mut rgb = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, fig.size).into_drawing_area();
+        draw_figure(&root, fig).map_err(|e| Error::Plot {
+            path: png.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    let mut encoded = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut encoded),
+        &rgb,
+        w,
+        h,
+        image::ColorType::Rgb8,
+    )
+    .map_err(|e| Error::Plot {
+        path: png.clone(),
+        message: e.to_string(),
+    })?;
+    write_atomic(&png, &encoded)?;
+
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, fig.size).into_drawing_area();
+        draw_figure(&root, fig).map_err(|e| Error::Plot {
+            path: svg.clone(),
+            message: e.to_string(),
+        })?;
+    }
+    write_atomic(&svg, text.as_bytes())?;
+    Ok(vec![png, svg])
+}
