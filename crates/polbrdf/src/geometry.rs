@@ -251,7 +251,11 @@ impl Geometry {
         let rho = sx.hypot(sy);
         let theta_n = rho.atan2(sz);
         // Below rounding level of |s_xy| the facet is the macro normal (θN = 0) and ΦN = 0 (spec §1).
-        let phi_n = if rho > 8.0 * f64::EPSILON * (si + sr) {
+        // The azimuths themselves carry rounding errors of order ulp(|φ|) (e.g. φ + π, or a
+        // rotation by several turns), which tilt a specular half vector sideways by as much:
+        // the rounding level scales with max(1, |φi|, |φr|).
+        let phi_scale = self.phi_i.abs().max(self.phi_r.abs()).max(1.0);
+        let phi_n = if rho > 8.0 * f64::EPSILON * (si + sr) * phi_scale {
             // Angle between the plane (z, h) and the plane of incidence, folded into [0, π/2].
             // Relative azimuth of h w.r.t. φi: atan2(s·e_⊥, s·e_∥) with e_∥ = (cosφi, sinφi).
             let along = sx * cpi + sy * spi;
