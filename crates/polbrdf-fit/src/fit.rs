@@ -418,7 +418,7 @@ fn natural_jacobian(problem: &Problem<'_>, x: &[f64], m: usize) -> Vec<Vec<f64>>
             let h = if x[j] != 0.0 { 1e-6 * x[j].abs() } else { 1e-9 };
             xp[j] = x[j] + h;
             problem.residuals(&xp, &mut plus);
-            let central = x[j] - h > 0.0 || problem.free[j].strictly_positive() && x[j] > h;
+            let central = x[j] - h > 0.0;
             let step = if central {
                 xp[j] = x[j] - h;
                 problem.residuals(&xp, &mut minus);
