@@ -1,0 +1,138 @@
+"""Type stubs of the compiled module ``polbrdf._polbrdf`` (use it through ``polbrdf``)."""
+
+from os import PathLike
+from typing import Any, final
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["Material", "brdf_dolp_flat", "evaluate_flat", "mueller_flat"]
+
+@final
+class Material:
+    """A validated material of the simplified Maxwell–Beard model.
+
+    The keyword arguments are exactly the keys of a material file: ``n`` (> 0), ``k`` (≥ 0),
+    ``sigma_deg`` (roughness σ, degrees) or ``b`` (rad⁻²) — exactly one —, ``a`` (sr⁻¹; None =
+    hemispherical normalization), ``form`` ("standard" | "paper"), ``shadowing``, ``tau_deg`` and
+    ``omega_deg`` (degrees), ``azimuth_term`` ("none" | "eq3"), ``rho_d`` and ``rho_v`` (sr⁻¹),
+    ``name``. Invalid values raise ``ValueError`` with the core's message.
+    """
+
+    def __new__(
+        cls,
+        n: float,
+        k: float = 0.0,
+        sigma_deg: float | None = None,
+        b: float | None = None,
+        a: float | None = None,
+        form: str = "standard",
+        shadowing: bool = True,
+        tau_deg: float = 15.0,
+        omega_deg: float = 40.0,
+        azimuth_term: str = "none",
+        rho_d: float = 0.0,
+        rho_v: float = 0.0,
+        name: str | None = None,
+    ) -> Material: ...
+    @staticmethod
+    def from_toml(path: str | PathLike[str]) -> Material:
+        """Load a material file; ``ValueError`` naming file and line for bad content,
+        ``OSError`` (``FileNotFoundError``, …) when it cannot be read."""
+    @staticmethod
+    def from_toml_str(text: str, source: str = "<string>") -> Material:
+        """Parse the text of a material file; ``source`` names it in error messages."""
+    @staticmethod
+    def preset(name: str) -> Material:
+        """A built-in material; ``ValueError`` for an unknown name."""
+    @staticmethod
+    def presets() -> list[str]:
+        """Names of the built-in materials."""
+    @staticmethod
+    def preset_descriptions() -> dict[str, str]:
+        """``{name: description}`` of the built-in materials."""
+    def to_toml(self) -> str:
+        """The material as material-file text."""
+    def to_dict(self) -> dict[str, Any]:
+        """The material's keys (``None`` for unset optional ones), for ``Material(**d)``."""
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    def __ne__(self, value: object, /) -> bool: ...
+    @property
+    def n(self) -> float:
+        """Real part of the refractive index."""
+    @property
+    def k(self) -> float:
+        """Extinction coefficient."""
+    @property
+    def sigma_deg(self) -> float | None:
+        """Roughness σ in degrees as given, or None."""
+    @property
+    def b(self) -> float | None:
+        """Width b of D in rad⁻² as given, or None (see ``b_effective``)."""
+    @property
+    def a(self) -> float | None:
+        """Amplitude a of D in sr⁻¹ as given, or None (see ``a_effective``)."""
+    @property
+    def form(self) -> str:
+        """Either "standard" or "paper"."""
+    @property
+    def shadowing(self) -> bool:
+        """Whether SO (eq. 3) is applied."""
+    @property
+    def tau_deg(self) -> float:
+        """τ of eq. 3, degrees."""
+    @property
+    def omega_deg(self) -> float:
+        """Ω of eq. 3, degrees."""
+    @property
+    def azimuth_term(self) -> str:
+        """Either "none" or "eq3"."""
+    @property
+    def rho_d(self) -> float:
+        """ρ_D, sr⁻¹."""
+    @property
+    def rho_v(self) -> float:
+        """ρ_V, sr⁻¹."""
+    @property
+    def name(self) -> str | None:
+        """The label, or None."""
+    @property
+    def a_effective(self) -> float:
+        """Amplitude a of D actually used, sr⁻¹."""
+    @property
+    def b_effective(self) -> float:
+        """Width b of D actually used, rad⁻²."""
+
+def mueller_flat(
+    material: Material,
+    theta_i: NDArray[np.float64],
+    phi_i: NDArray[np.float64],
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    degrees: bool,
+) -> NDArray[np.float64]:
+    """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16)."""
+
+def brdf_dolp_flat(
+    material: Material,
+    theta_i: NDArray[np.float64],
+    phi_i: NDArray[np.float64],
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    degrees: bool,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """BRDF (sr⁻¹) and DoLP at n geometries, two arrays of length n."""
+
+def evaluate_flat(
+    material: Material,
+    theta_i: NDArray[np.float64],
+    phi_i: NDArray[np.float64],
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    degrees: bool,
+    with_mueller: bool,
+) -> tuple[
+    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None
+]:
+    """BRDF, DoLP, AoLP (and the (n, 16) pBRDF) at n geometries."""

@@ -1,0 +1,639 @@
+//! `polbrdf._polbrdf`: the compiled half of the Python package `polbrdf`.
+//!
+//! The Python half (`python/polbrdf/__init__.py`) broadcasts the user's angles with NumPy and
+//! hands this module four contiguous 1-D float64 arrays of equal length. Everything here works
+//! on those flat arrays with the GIL released: in parallel chunks (rayon), each chunk converted
+//! from degrees on the stack when needed, validated as a core [`GeometryBatch`] and evaluated by
+//! the core's batch API ([`batch::mueller_into`], [`batch::brdf_dolp_into`]), writing straight
+//! into the NumPy output arrays.
+//!
+//! Errors are Python exceptions: the core's `InvalidAngle` / `InvalidParameter` /
+//! `InconsistentParameters` / `UnknownPreset` become `ValueError` with the core's message, file
+//! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
+
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use polbrdf::batch::{self, GeometryBatch};
+use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec, Stokes};
+use pyo3::exceptions::{
+    PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyValueError,
+};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use rayon::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Elements per parallel task (as the core's batch module).
+const CHUNK: usize = 2048;
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+
+/// A core error as a `ValueError` carrying the core's message. For a bad angle of a batch the
+/// exception also gets the attributes `index` (flat position) and `argument` (`theta_i`, …),
+/// which the Python layer turns into a position in the broadcast shape.
+fn core_err(py: Python<'_>, e: &polbrdf::Error) -> PyErr {
+    let err = PyValueError::new_err(e.to_string());
+    if let polbrdf::Error::InvalidAngle { name, index, .. } = e {
+        let value = err.value(py);
+        // Setting attributes on a fresh ValueError cannot fail; ignore it if it ever does.
+        let _ = value.setattr("argument", name.trim_end_matches("_deg"));
+        if let Some(i) = index {
+            let _ = value.setattr("index", *i);
+        }
+    }
+    err
+}
+
+/// A `polbrdf-io` error: reading failures become the matching `OSError` subclass, everything
+/// else (syntax, unknown key, bad value) a `ValueError`. The message names file and line.
+fn io_err(e: &polbrdf_io::Error) -> PyErr {
+    let msg = e.to_string();
+    match e {
+        polbrdf_io::Error::Read { source, .. } | polbrdf_io::Error::Write { source, .. } => {
+            os_err(source.kind(), msg)
+        }
+        _ => PyValueError::new_err(msg),
+    }
+}
+
+fn os_err(kind: std::io::ErrorKind, msg: String) -> PyErr {
+    use std::io::ErrorKind;
+    match kind {
+        ErrorKind::NotFound => PyFileNotFoundError::new_err(msg),
+        ErrorKind::PermissionDenied => PyPermissionError::new_err(msg),
+        ErrorKind::IsADirectory => PyIsADirectoryError::new_err(msg),
+        _ => PyOSError::new_err(msg),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Material
+
+/// A validated material of the simplified Maxwell–Beard model.
+///
+/// The keyword arguments are exactly the keys of a material file (see the README):
+///
+/// - ``n``: real part of the refractive index (required, > 0).
+/// - ``k``: extinction coefficient (≥ 0), default 0.
+/// - ``sigma_deg``: roughness σ in degrees (``b = 1/σ²``, σ in rad); or
+/// - ``b``: width of the facet distribution ``D = a·exp(−b·θN²)`` in rad⁻².
+///   Give exactly one of ``sigma_deg`` and ``b``.
+/// - ``a``: amplitude of D in sr⁻¹; ``None`` (default) = hemispherical normalization.
+/// - ``form``: ``"standard"`` (eq. 1, default) or ``"paper"`` (eq. 6 as printed).
+/// - ``shadowing``: apply the shadowing/obscuration function SO (eq. 3), default True.
+/// - ``tau_deg``, ``omega_deg``: τ and Ω of eq. 3 in degrees, default 15 and 40.
+/// - ``azimuth_term``: ``"none"`` (default) or ``"eq3"`` (the ΦN factor of eq. 3).
+/// - ``rho_d``, ``rho_v``: volume-scattering constants ρ_D, ρ_V in sr⁻¹, default 0.
+/// - ``name``: an optional label.
+///
+/// Raises ``ValueError`` with the core's message (naming the key and value) for an invalid
+/// parameter. Instances are immutable, comparable with ``==`` and picklable.
+#[pyclass(name = "Material", module = "polbrdf", frozen, eq)]
+#[derive(Debug, Clone, PartialEq)]
+struct PyMaterial {
+    inner: Material,
+}
+
+fn parse_form(s: &str) -> PyResult<Form> {
+    s.parse::<Form>()
+        .map_err(|m| PyValueError::new_err(format!("invalid `form`: {m}")))
+}
+
+fn parse_azimuth(s: &str) -> PyResult<AzimuthTerm> {
+    s.parse::<AzimuthTerm>()
+        .map_err(|m| PyValueError::new_err(format!("invalid `azimuth_term`: {m}")))
+}
+
+fn build(py: Python<'_>, spec: &MaterialSpec) -> PyResult<PyMaterial> {
+    spec.build()
+        .map(|inner| PyMaterial { inner })
+        .map_err(|e| core_err(py, &e))
+}
+
+/// 1-based line of byte offset `pos` in `bytes`.
+fn line_of(bytes: &[u8], pos: usize) -> usize {
+    bytes[..pos.min(bytes.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// Python literal of a float (shortest round-trip form, as `repr(float)` gives).
+fn py_float(x: f64) -> String {
+    let s = format!("{x:?}");
+    // Rust writes 1e-5 / 1e20, Python 1e-05 / 1e+20: both are valid literals, but match Python.
+    match s.split_once('e') {
+        Some((m, e)) => {
+            let (sign, digits) = match e.strip_prefix('-') {
+                Some(d) => ('-', d),
+                None => ('+', e),
+            };
+            format!("{m}e{sign}{digits:0>2}")
+        }
+        None => s,
+    }
+}
+
+#[pymethods]
+impl PyMaterial {
+    #[new]
+    #[pyo3(signature = (
+        n, k = 0.0, sigma_deg = None, b = None, a = None, form = "standard", shadowing = true,
+        tau_deg = 15.0, omega_deg = 40.0, azimuth_term = "none", rho_d = 0.0, rho_v = 0.0,
+        name = None
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        n: f64,
+        k: f64,
+        sigma_deg: Option<f64>,
+        b: Option<f64>,
+        a: Option<f64>,
+        form: &str,
+        shadowing: bool,
+        tau_deg: f64,
+        omega_deg: f64,
+        azimuth_term: &str,
+        rho_d: f64,
+        rho_v: f64,
+        name: Option<String>,
+    ) -> PyResult<Self> {
+        let spec = MaterialSpec {
+            name,
+            n,
+            k,
+            sigma_deg,
+            b,
+            a,
+            form: parse_form(form)?,
+            shadowing,
+            tau_deg,
+            omega_deg,
+            azimuth_term: parse_azimuth(azimuth_term)?,
+            rho_d,
+            rho_v,
+        };
+        build(py, &spec)
+    }
+
+    /// Load a material file (flat TOML; the keys of the constructor).
+    ///
+    /// Raises ``ValueError`` whose message starts ``path:line:`` and names the key for malformed
+    /// TOML, an unknown key, a wrong type or an invalid value; ``FileNotFoundError`` (or another
+    /// ``OSError``) when the file cannot be read.
+    #[staticmethod]
+    fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let bytes = std::fs::read(&path)
+            .map_err(|e| os_err(e.kind(), format!("{}: cannot read: {e}", path.display())))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let line = line_of(e.as_bytes(), e.utf8_error().valid_up_to());
+            PyValueError::new_err(format!(
+                "{}:{line}: file is not valid UTF-8 text",
+                path.display()
+            ))
+        })?;
+        let spec = polbrdf_io::parse_material(&text, &path).map_err(|e| io_err(&e))?;
+        build(py, &spec)
+    }
+
+    /// Parse the text of a material file (as :meth:`from_toml`, for a string). ``source`` is the
+    /// name used in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, source = "<string>"))]
+    fn from_toml_str(py: Python<'_>, text: &str, source: &str) -> PyResult<Self> {
+        let spec = polbrdf_io::parse_material(text, Path::new(source)).map_err(|e| io_err(&e))?;
+        build(py, &spec)
+    }
+
+    /// A built-in material by name (``Material.presets()`` lists them). ``ValueError`` for an
+    /// unknown name (the message lists the known ones).
+    #[staticmethod]
+    fn preset(py: Python<'_>, name: &str) -> PyResult<Self> {
+        let spec = polbrdf::preset(name).map_err(|e| core_err(py, &e))?;
+        build(py, &spec)
+    }
+
+    /// Names of the built-in materials, in listing order.
+    #[staticmethod]
+    fn presets() -> Vec<&'static str> {
+        polbrdf::presets::names()
+    }
+
+    /// ``{name: description}`` of the built-in materials: what each models and its source.
+    #[staticmethod]
+    fn preset_descriptions(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let d = PyDict::new(py);
+        for p in polbrdf::presets::all() {
+            d.set_item(p.name, p.description)?;
+        }
+        Ok(d)
+    }
+
+    /// The material as a material file (TOML text) that :meth:`from_toml_str` reads back to an
+    /// equal material.
+    fn to_toml(&self) -> String {
+        polbrdf_io::material_to_toml(self.inner.spec())
+    }
+
+    /// The material's keys as a dict (``None`` for unset optional keys), suitable for
+    /// ``Material(**d)``.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.inner.spec();
+        let d = PyDict::new(py);
+        d.set_item("n", s.n)?;
+        d.set_item("k", s.k)?;
+        d.set_item("sigma_deg", s.sigma_deg)?;
+        d.set_item("b", s.b)?;
+        d.set_item("a", s.a)?;
+        d.set_item("form", s.form.as_str())?;
+        d.set_item("shadowing", s.shadowing)?;
+        d.set_item("tau_deg", s.tau_deg)?;
+        d.set_item("omega_deg", s.omega_deg)?;
+        d.set_item("azimuth_term", s.azimuth_term.as_str())?;
+        d.set_item("rho_d", s.rho_d)?;
+        d.set_item("rho_v", s.rho_v)?;
+        d.set_item("name", s.name.as_deref())?;
+        Ok(d)
+    }
+
+    /// Pickle support: rebuilt through the constructor from :meth:`to_dict`.
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+        Ok((PyTuple::empty(py), self.to_dict(py)?))
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let s = self.inner.spec();
+        let mut parts = vec![
+            format!("n={}", py_float(s.n)),
+            format!("k={}", py_float(s.k)),
+        ];
+        for (key, v) in [("sigma_deg", s.sigma_deg), ("b", s.b), ("a", s.a)] {
+            if let Some(v) = v {
+                parts.push(format!("{key}={}", py_float(v)));
+            }
+        }
+        parts.push(format!("form='{}'", s.form.as_str()));
+        parts.push(format!(
+            "shadowing={}",
+            if s.shadowing { "True" } else { "False" }
+        ));
+        parts.push(format!("tau_deg={}", py_float(s.tau_deg)));
+        parts.push(format!("omega_deg={}", py_float(s.omega_deg)));
+        parts.push(format!("azimuth_term='{}'", s.azimuth_term.as_str()));
+        parts.push(format!("rho_d={}", py_float(s.rho_d)));
+        parts.push(format!("rho_v={}", py_float(s.rho_v)));
+        if let Some(name) = &s.name {
+            let r = pyo3::types::PyString::new(py, name).repr()?;
+            parts.push(format!("name={r}"));
+        }
+        Ok(format!("Material({})", parts.join(", ")))
+    }
+
+    /// Real part of the refractive index.
+    #[getter]
+    fn n(&self) -> f64 {
+        self.inner.spec().n
+    }
+    /// Extinction coefficient (imaginary part of the refractive index).
+    #[getter]
+    fn k(&self) -> f64 {
+        self.inner.spec().k
+    }
+    /// Roughness σ in degrees as given, or ``None`` when ``b`` was given.
+    #[getter]
+    fn sigma_deg(&self) -> Option<f64> {
+        self.inner.spec().sigma_deg
+    }
+    /// Width ``b`` of D in rad⁻² as given, or ``None`` when ``sigma_deg`` was given (see
+    /// ``b_effective``).
+    #[getter]
+    fn b(&self) -> Option<f64> {
+        self.inner.spec().b
+    }
+    /// Amplitude ``a`` of D in sr⁻¹ as given, or ``None`` for the hemispherical normalization
+    /// (see ``a_effective``).
+    #[getter]
+    fn a(&self) -> Option<f64> {
+        self.inner.spec().a
+    }
+    /// ``"standard"`` or ``"paper"``.
+    #[getter]
+    fn form(&self) -> &'static str {
+        self.inner.spec().form.as_str()
+    }
+    /// Whether the shadowing/obscuration function (eq. 3) is applied.
+    #[getter]
+    fn shadowing(&self) -> bool {
+        self.inner.spec().shadowing
+    }
+    /// τ of eq. 3 in degrees.
+    #[getter]
+    fn tau_deg(&self) -> f64 {
+        self.inner.spec().tau_deg
+    }
+    /// Ω of eq. 3 in degrees.
+    #[getter]
+    fn omega_deg(&self) -> f64 {
+        self.inner.spec().omega_deg
+    }
+    /// ``"none"`` or ``"eq3"``.
+    #[getter]
+    fn azimuth_term(&self) -> &'static str {
+        self.inner.spec().azimuth_term.as_str()
+    }
+    /// Lambertian volume constant ρ_D in sr⁻¹.
+    #[getter]
+    fn rho_d(&self) -> f64 {
+        self.inner.spec().rho_d
+    }
+    /// Non-Lambertian volume constant ρ_V in sr⁻¹.
+    #[getter]
+    fn rho_v(&self) -> f64 {
+        self.inner.spec().rho_v
+    }
+    /// The label, or ``None``.
+    #[getter]
+    fn name(&self) -> Option<&str> {
+        self.inner.name()
+    }
+    /// The amplitude ``a`` of D actually used, in sr⁻¹ (the given one or the normalization's).
+    #[getter]
+    fn a_effective(&self) -> f64 {
+        self.inner.distribution().a()
+    }
+    /// The width ``b`` of D actually used, in rad⁻² (the given one or ``1/σ²``).
+    #[getter]
+    fn b_effective(&self) -> f64 {
+        self.inner.distribution().b()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Evaluation
+
+/// The four angle arrays as slices (contiguous by construction in the Python layer).
+fn slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> PyResult<[&'a [f64]; 4]> {
+    let mut out: [&[f64]; 4] = [&[]; 4];
+    for (o, (a, name)) in out.iter_mut().zip(
+        arrays
+            .into_iter()
+            .zip(["theta_i", "phi_i", "theta_r", "phi_r"]),
+    ) {
+        *o = a.as_slice().map_err(|e| {
+            PyValueError::new_err(format!("`{name}` must be a contiguous 1-D array: {e}"))
+        })?;
+    }
+    Ok(out)
+}
+
+/// Checks that the four angle arrays are equally long; returns the length.
+fn common_len(input: [&[f64]; 4]) -> Result<usize, polbrdf::Error> {
+    let n = input[0].len();
+    for (s, name) in input[1..].iter().zip(["phi_i", "theta_r", "phi_r"]) {
+        if s.len() != n {
+            return Err(polbrdf::Error::LengthMismatch {
+                name,
+                got: s.len(),
+                expected: n,
+            });
+        }
+    }
+    Ok(n)
+}
+
+/// Runs `f` on the geometries `start .. start + len` (`len ≤ CHUNK`) as a validated core batch
+/// ([`GeometryBatch::new`]) in radians. With `degrees` the chunk is first converted into a
+/// buffer on the stack (`f64::to_radians`, as `Geometry::from_degrees` does): the conversion
+/// happens in the same pass as the evaluation, with no whole-array temporaries.
+///
+/// An invalid angle is reported with its index in the whole array and, in degrees mode, with
+/// its value in degrees (as `Geometry::from_degrees` reports it); the name stays the Python
+/// argument's (`theta_i`, …).
+fn chunk_batch<T>(
+    input: [&[f64]; 4],
+    start: usize,
+    len: usize,
+    degrees: bool,
+    f: impl FnOnce(&GeometryBatch<'_>) -> Result<T, polbrdf::Error>,
+) -> Result<T, polbrdf::Error> {
+    let part = input.map(|s| &s[start..start + len]);
+    let mut buf = [[0.0f64; CHUNK]; 4];
+    let rad: [&[f64]; 4] = if degrees {
+        for (b, s) in buf.iter_mut().zip(part) {
+            for (r, d) in b.iter_mut().zip(s) {
+                *r = d.to_radians();
+            }
+        }
+        let [a, b, c, d] = &buf;
+        [&a[..len], &b[..len], &c[..len], &d[..len]]
+    } else {
+        part
+    };
+    let batch = GeometryBatch::new(rad[0], rad[1], rad[2], rad[3]).map_err(|e| match e {
+        polbrdf::Error::InvalidAngle {
+            name,
+            value,
+            index,
+            reason,
+        } => {
+            let which = ["theta_i", "phi_i", "theta_r", "phi_r"]
+                .iter()
+                .position(|n| *n == name);
+            let (value, reason) = match (degrees, which, index) {
+                (true, Some(w), Some(i)) => (
+                    part[w][i],
+                    if reason.starts_with("zenith") {
+                        "zenith angle must lie in [0°, 180°]"
+                    } else {
+                        reason
+                    },
+                ),
+                _ => (value, reason),
+            };
+            polbrdf::Error::InvalidAngle {
+                name,
+                value,
+                index: index.map(|i| i + start),
+                reason,
+            }
+        }
+        other => other,
+    })?;
+    f(&batch)
+}
+
+/// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` float64 array, row-major
+/// 4×4 per geometry. The Python layer reshapes it to `shape + (4, 4)`.
+#[pyfunction]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees))]
+fn mueller_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_i: PyReadonlyArray1<'py, f64>,
+    phi_i: PyReadonlyArray1<'py, f64>,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
+    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let out = PyArray2::<f64>::zeros(py, [n, 16], false);
+    {
+        let mut rw = out.readwrite();
+        let flat = rw.as_slice_mut().expect("a new array is contiguous");
+        let m = &material.inner;
+        py.detach(|| {
+            let (rows, _) = flat.as_chunks_mut::<16>();
+            rows.par_chunks_mut(CHUNK)
+                .enumerate()
+                .try_for_each(|(c, rows)| {
+                    chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
+                        batch::mueller_into(m, b, rows)
+                    })
+                })
+        })
+        .map_err(|e| core_err(py, &e))?;
+    }
+    Ok(out)
+}
+
+/// The scalar BRDF `f` (sr⁻¹) and the DoLP for unpolarized input at `n` geometries, as two
+/// float64 arrays of length `n`.
+#[pyfunction]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees))]
+#[allow(clippy::type_complexity)]
+fn brdf_dolp_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_i: PyReadonlyArray1<'py, f64>,
+    phi_i: PyReadonlyArray1<'py, f64>,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
+    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let brdf = PyArray1::<f64>::zeros(py, n, false);
+    let dolp = PyArray1::<f64>::zeros(py, n, false);
+    {
+        let (mut bw, mut dw) = (brdf.readwrite(), dolp.readwrite());
+        let b = bw.as_slice_mut().expect("a new array is contiguous");
+        let d = dw.as_slice_mut().expect("a new array is contiguous");
+        let m = &material.inner;
+        py.detach(|| {
+            b.par_chunks_mut(CHUNK)
+                .zip(d.par_chunks_mut(CHUNK))
+                .enumerate()
+                .try_for_each(|(c, (b, d))| {
+                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
+                        batch::brdf_dolp_into(m, g, b, d)
+                    })
+                })
+        })
+        .map_err(|e| core_err(py, &e))?;
+    }
+    Ok((brdf, dolp))
+}
+
+type Evaluated<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Option<Bound<'py, PyArray2<f64>>>,
+);
+
+/// BRDF (sr⁻¹), DoLP and AoLP (of `F·(1,0,0,0)`; degrees when `degrees`, else radians) at `n`
+/// geometries, plus the `(n, 16)` pBRDF when `with_mueller`; one pass over the geometries.
+#[pyfunction]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, with_mueller))]
+#[allow(clippy::too_many_arguments)]
+fn evaluate_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_i: PyReadonlyArray1<'py, f64>,
+    phi_i: PyReadonlyArray1<'py, f64>,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+    with_mueller: bool,
+) -> PyResult<Evaluated<'py>> {
+    let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
+    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let brdf = PyArray1::<f64>::zeros(py, n, false);
+    let dolp = PyArray1::<f64>::zeros(py, n, false);
+    let aolp = PyArray1::<f64>::zeros(py, n, false);
+    let mueller = with_mueller.then(|| PyArray2::<f64>::zeros(py, [n, 16], false));
+    {
+        let (mut bw, mut dw, mut aw) = (brdf.readwrite(), dolp.readwrite(), aolp.readwrite());
+        let mut mw = mueller.as_ref().map(|m| m.readwrite());
+        let b = bw.as_slice_mut().expect("a new array is contiguous");
+        let d = dw.as_slice_mut().expect("a new array is contiguous");
+        let a = aw.as_slice_mut().expect("a new array is contiguous");
+        let f = mw
+            .as_mut()
+            .map(|m| m.as_slice_mut().expect("a new array is contiguous"));
+        let m = &material.inner;
+        // AoLP of the reflected light for unpolarized input (the core's `Stokes::aolp`).
+        let aolp = |s: &Stokes| {
+            let a = s.aolp();
+            if degrees {
+                a.to_degrees()
+            } else {
+                a
+            }
+        };
+        py.detach(|| {
+            let scalars = b
+                .par_chunks_mut(CHUNK)
+                .zip(d.par_chunks_mut(CHUNK))
+                .zip(a.par_chunks_mut(CHUNK))
+                .enumerate();
+            match f {
+                Some(f) => {
+                    let (rows, _) = f.as_chunks_mut::<16>();
+                    scalars.zip(rows.par_chunks_mut(CHUNK)).try_for_each(
+                        |((c, ((b, d), a)), rows)| {
+                            chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
+                                batch::mueller_into(m, g, rows)?;
+                                // The scalars from the first column, as `Mueller::apply` gives
+                                // them for unpolarized input.
+                                for (((b, d), a), r) in b.iter_mut().zip(d).zip(a).zip(&*rows) {
+                                    let s = Stokes([r[0], r[4], r[8], r[12]]);
+                                    (*b, *d, *a) = (r[0], s.dolp(), aolp(&s));
+                                }
+                                Ok(())
+                            })
+                        },
+                    )
+                }
+                None => scalars.try_for_each(|(c, ((b, d), a))| {
+                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
+                        for (j, ((b, d), a)) in b.iter_mut().zip(d).zip(a).enumerate() {
+                            let e = m.evaluate(&g.get(j));
+                            let s = e.reflect(&Stokes::unpolarized());
+                            (*b, *d, *a) = (e.brdf(), s.dolp(), aolp(&s));
+                        }
+                        Ok(())
+                    })
+                }),
+            }
+        })
+        .map_err(|e| core_err(py, &e))?;
+    }
+    Ok((brdf, dolp, aolp, mueller))
+}
+
+/// The compiled part of the `polbrdf` package (import `polbrdf`, not this module).
+#[pymodule]
+fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyMaterial>()?;
+    m.add_function(wrap_pyfunction!(mueller_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,119 @@
+"""Python and `polbrdf eval` (the CLI) agree on the same geometries and materials.
+
+Needs the CLI binary: `cargo build -p polbrdf-cli` (.ci/run builds it first), or the path of a
+`polbrdf` binary in $POLBRDF_CLI. Skipped with that reason when there is none.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from support import REPO
+
+import polbrdf
+
+
+def cli_binary() -> Path | None:
+    env = os.environ.get("POLBRDF_CLI")
+    if env:
+        return Path(env)
+    for profile in ("debug", "release"):
+        p = REPO / "target" / profile / "polbrdf"
+        if p.is_file() and os.access(p, os.X_OK):
+            return p
+    return None
+
+
+CLI = cli_binary()
+pytestmark = pytest.mark.skipif(
+    CLI is None,
+    reason="the polbrdf CLI binary is not built (run `cargo build -p polbrdf-cli` in the "
+    "repository root, or set POLBRDF_CLI to its path)",
+)
+
+
+def geometries() -> np.ndarray:
+    rng = np.random.default_rng(7)
+    n = 300
+    g = np.column_stack(
+        [
+            rng.uniform(0, 89, n),
+            rng.uniform(-180, 360, n),
+            rng.uniform(0, 89, n),
+            rng.uniform(-180, 360, n),
+        ]
+    )
+    special: list[list[float]] = [
+        [0, 0, 0, 0],  # normal incidence and view
+        [60, 0, 60, 180],  # specular
+        [45, 30, 45, 30],  # backscatter (beta = 0)
+        [89.9, 0, 89.9, 180],  # grazing
+        [95, 0, 30, 180],  # below the horizon: zero
+        [30, 0, 180, 0],  # below the horizon: zero
+        [56.5, 10, 56.5, 190],  # near Brewster
+    ]
+    return np.vstack([g, special])
+
+
+def run_cli(material: str, g: np.ndarray, tmp_path: Path) -> dict[str, np.ndarray]:
+    geo = tmp_path / "g.csv"
+    with geo.open("w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"])
+        w.writerows([[repr(float(x)) for x in row] for row in g])
+    assert CLI is not None
+    out = subprocess.run(
+        [str(CLI), "eval", "--material", material, "--input", str(geo)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert out.returncode == 0, out.stderr
+    rows = list(csv.reader(io.StringIO(out.stdout)))
+    header, body = rows[0], rows[1:]
+    assert len(body) == len(g)
+    return {h: np.array([float(r[k]) for r in body]) for k, h in enumerate(header)}
+
+
+def compare(mat: polbrdf.Material, cli: dict[str, np.ndarray], g: np.ndarray) -> None:
+    e = polbrdf.evaluate(mat, *g.T, with_mueller=True)
+    assert e.mueller is not None
+    scale = np.abs(e.brdf)[:, None, None] + 1e-300
+    want = np.stack([cli[f"m{i}{j}"] for i in range(4) for j in range(4)], axis=-1)
+    want = want.reshape(-1, 4, 4)
+    assert np.all(np.abs(e.mueller - want) <= 1e-12 * scale + 1e-15)
+    np.testing.assert_allclose(e.brdf, cli["brdf"], rtol=1e-12, atol=0)
+    np.testing.assert_allclose(e.dolp, cli["dolp"], rtol=0, atol=1e-12)
+    # AoLP: equal modulo 180° (±90° are the same orientation).
+    diff = (e.aolp - cli["aolp_deg"] + 90.0) % 180.0 - 90.0
+    assert np.all(np.abs(diff) <= 1e-9)
+    np.testing.assert_array_equal(polbrdf.mueller(mat, *g.T), e.mueller)
+
+
+def test_preset_agrees_with_cli(tmp_path: Path) -> None:
+    g = geometries()
+    compare(polbrdf.Material.preset("paint"), run_cli("paint", g, tmp_path), g)
+
+
+@pytest.mark.parametrize(
+    "mat",
+    [
+        polbrdf.Material(n=1.5, k=0.2, b=6.0, a=1.7, form="paper", azimuth_term="eq3", rho_v=0.02),
+        polbrdf.Material(n=0.181, k=3.07, sigma_deg=10, shadowing=False, tau_deg=10, omega_deg=30),
+        polbrdf.Material.preset("aluminium"),
+    ],
+    ids=["paper-eq3", "gold-like-no-shadowing", "aluminium"],
+)
+def test_material_file_agrees_with_cli(mat: polbrdf.Material, tmp_path: Path) -> None:
+    """to_toml() writes a file the CLI reads to the same material."""
+    path = tmp_path / "m.toml"
+    path.write_text(mat.to_toml(), encoding="utf-8")
+    assert polbrdf.Material.from_toml(path) == mat
+    g = geometries()
+    compare(mat, run_cli(str(path), g, tmp_path), g)
