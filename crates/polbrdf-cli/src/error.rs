@@ -10,6 +10,10 @@ pub enum CliError {
     Reproduce(polbrdf_reproduce::Error),
     /// The fit ran but did not converge: results were written, flagged.
     NotConverged(String),
+    /// A command-line value is malformed or out of range (the message names the option).
+    Invalid(String),
+    /// A figure could not be drawn (a bug: the figures are built from validated data).
+    Plot(polbrdf_plot::Error),
 }
 
 impl CliError {
@@ -23,6 +27,8 @@ impl CliError {
             CliError::Reproduce(polbrdf_reproduce::Error::Io { .. }) => 4,
             CliError::Reproduce(_) => 1,
             CliError::NotConverged(_) => 5,
+            CliError::Invalid(_) => 3,
+            CliError::Plot(_) => 1,
         }
     }
 }
@@ -35,6 +41,8 @@ impl std::fmt::Display for CliError {
             CliError::Output(e) => write!(f, "cannot write to standard output: {e}"),
             CliError::Fit(e) => write!(f, "fit: {e}"),
             CliError::Reproduce(e) => write!(f, "reproduce: {e}"),
+            CliError::Invalid(m) => write!(f, "{m}"),
+            CliError::Plot(e) => write!(f, "figure: {e}"),
             CliError::NotConverged(m) => write!(
                 f,
                 "fit did not converge ({m}); the results were written with \"converged\": false — \
@@ -65,5 +73,11 @@ impl From<polbrdf_fit::FitError> for CliError {
 impl From<polbrdf_reproduce::Error> for CliError {
     fn from(e: polbrdf_reproduce::Error) -> Self {
         CliError::Reproduce(e)
+    }
+}
+
+impl From<polbrdf_plot::Error> for CliError {
+    fn from(e: polbrdf_plot::Error) -> Self {
+        CliError::Plot(e)
     }
 }

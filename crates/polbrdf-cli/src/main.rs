@@ -5,9 +5,12 @@
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
+mod albedo;
+mod contrast;
 mod error;
 mod eval;
 mod fit;
+mod map;
 mod materials;
 mod output;
 mod reproduce;
@@ -78,6 +81,22 @@ enum Command {
         #[arg(long, value_name = "DIR", default_value = "reproduce-out")]
         out: PathBuf,
     },
+    /// Target against background: polarization contrast over the viewing hemisphere and the
+    /// best viewing directions.
+    ///
+    /// Writes into --out: contrast.csv (one row per viewing direction), best.json (the best
+    /// direction and the best distinct ones), and polar maps (PNG and SVG) of the DoLP of target
+    /// and background, ΔDoLP, the intensity ratio, the AoLP difference and the polarization
+    /// contrast, with overview.png/svg.
+    Contrast(contrast::Args),
+    /// Directional–hemispherical reflectance (albedo) at a set of incidence angles; values
+    /// above 1 (energy created by the parameters) are flagged.
+    Albedo(albedo::Args),
+    /// Polar maps of the BRDF, DoLP and AoLP of one material over the viewing hemisphere.
+    ///
+    /// Writes into --out: map.csv (one row per viewing direction), brdf, dolp, aolp and
+    /// overview (PNG and SVG).
+    Map(map::Args),
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -135,5 +154,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
         }),
         Command::Reproduce { out } => reproduce::run(&out),
         Command::Materials { show } => materials::run(show.as_deref()),
+        Command::Contrast(args) => contrast::run(&args),
+        Command::Albedo(args) => albedo::run(&args),
+        Command::Map(args) => map::run(&args),
     }
 }

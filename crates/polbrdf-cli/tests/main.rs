@@ -1,5 +1,8 @@
 //! Integration tests of the `polbrdf` binary (one test binary, modules by topic).
 
+mod albedo;
 mod common;
+mod contrast;
 mod eval;
 mod fit;
+mod map;

@@ -1,9 +1,8 @@
-//! The figures, as declarations for [`crate::plot`].
+//! The figures, as declarations for [`polbrdf_plot`].
 
 use crate::analysis::Analysis;
 use crate::params::*;
-use crate::plot::{Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
-use plotters::style::RGBColor;
+use polbrdf_plot::{Figure, LegendAt, Line, Marker, Markers, Panel, RGBColor, PALETTE};
 
 const BLACK: RGBColor = RGBColor(0, 0, 0);
 const GREY: RGBColor = RGBColor(90, 90, 90);

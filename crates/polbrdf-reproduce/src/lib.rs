@@ -35,7 +35,6 @@ pub mod compute;
 mod figures;
 mod output;
 pub mod params;
-mod plot;
 mod report;
 
 pub use output::Error;
@@ -106,7 +105,7 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
         }
     }
     let mut new = vec![write(dir, "fig2.csv", csv.as_bytes())?];
-    new.extend(plot::render(&figures::fig2(&a), dir, "fig2")?);
+    new.extend(render(&figures::fig2(&a), dir, "fig2")?);
     step("Fig. 2 written", &mut files, new);
 
     // Fig. 3
@@ -115,7 +114,7 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
         csv.row(&[t, d]);
     }
     let mut new = vec![write(dir, "fig3.csv", csv.as_bytes())?];
-    new.extend(plot::render(&figures::fig3(&a), dir, "fig3")?);
+    new.extend(render(&figures::fig3(&a), dir, "fig3")?);
     step("Fig. 3 written", &mut files, new);
 
     // Fig. 4
@@ -126,7 +125,7 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
         }
     }
     let mut new = vec![write(dir, "fig4.csv", csv.as_bytes())?];
-    new.extend(plot::render(&figures::fig4(&a), dir, "fig4")?);
+    new.extend(render(&figures::fig4(&a), dir, "fig4")?);
     step("Fig. 4 written", &mut files, new);
 
     // Table 1 and Fig. 5
@@ -149,7 +148,7 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
         }
     }
     let mut new = vec![write(dir, "table1.csv", csv.as_bytes())?];
-    new.extend(plot::render(&figures::fig5(&a), dir, "fig5")?);
+    new.extend(render(&figures::fig5(&a), dir, "fig5")?);
     step("Table 1 and Fig. 5 written", &mut files, new);
 
     // Report
@@ -159,6 +158,22 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
     step("report written", &mut files, new);
 
     Ok(Summary { files, checks })
+}
+
+/// Draws `fig` into `dir/stem.png` and `dir/stem.svg` (rendered in memory by `polbrdf_plot`,
+/// then each written atomically); returns both paths.
+fn render(
+    fig: &polbrdf_plot::Figure,
+    dir: &std::path::Path,
+    stem: &str,
+) -> Result<Vec<PathBuf>, Error> {
+    let png = dir.join(format!("{stem}.png"));
+    let bytes = fig.png().map_err(|e| Error::from_plot(e, &png))?;
+    output::write_atomic(&png, &bytes)?;
+    let svg = dir.join(format!("{stem}.svg"));
+    let text = fig.svg().map_err(|e| Error::from_plot(e, &svg))?;
+    output::write_atomic(&svg, text.as_bytes())?;
+    Ok(vec![png, svg])
 }
 
 fn write(dir: &std::path::Path, name: &str, bytes: &[u8]) -> Result<PathBuf, Error> {

@@ -31,6 +31,19 @@ pub enum Error {
     Model(#[from] polbrdf::Error),
 }
 
+impl Error {
+    /// A plotting error for the figure file `path`.
+    pub(crate) fn from_plot(e: polbrdf_plot::Error, path: &Path) -> Self {
+        match e {
+            polbrdf_plot::Error::Font => Error::Font,
+            other => Error::Plot {
+                path: path.to_path_buf(),
+                message: other.to_string(),
+            },
+        }
+    }
+}
+
 /// Writes `bytes` to `path` atomically (`polbrdf_io::write_atomic`).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     polbrdf_io::write_atomic(path, bytes).map_err(|e| Error::Io {

@@ -25,6 +25,7 @@
 
 pub mod albedo;
 pub mod batch;
+pub mod contrast;
 pub mod distribution;
 pub mod error;
 pub mod fresnel;
@@ -39,6 +40,7 @@ pub mod shadowing;
 
 pub use albedo::{directional_hemispherical, Albedo};
 pub use batch::GeometryBatch;
+pub use contrast::{Contrast, ContrastSample, Illumination, RankOptions, Ranking, ViewGrid};
 pub use distribution::Distribution;
 pub use error::{Error, Result};
 pub use fresnel::{Fresnel, RefractiveIndex};

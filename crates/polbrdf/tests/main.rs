@@ -2,6 +2,7 @@
 
 mod albedo;
 mod common;
+mod contrast;
 mod limits;
 mod properties;
 mod vectors;

@@ -1,37 +1,14 @@
-//! Figures: a small declarative layer over `plotters`, drawn once into a PNG (bitmap backend,
-//! text rendered with the embedded DejaVu Sans through `ab_glyph`) and once into an SVG.
+//! Line charts: a small declarative layer over `plotters` (moved here from `polbrdf-reproduce`),
+//! drawn once into a PNG (bitmap backend, text rendered with the embedded DejaVu Sans through
+//! `ab_glyph`) and once into an SVG.
 
-use crate::output::{write_atomic, Error};
+use crate::error::Result;
+use crate::font::FAMILY;
+use crate::render::{draw_err, encode_png};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
-use std::sync::OnceLock;
 
-type PlotResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
-
-/// DejaVu Sans 2.37 (Bitstream Vera / Arev license, see `assets/DejaVuSans-LICENSE.txt`).
-static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
-const FAMILY: &str = "sans-serif";
-
-/// Registers the embedded font for every style plotters may ask for (once per process).
-fn register_font() -> Result<(), Error> {
-    static DONE: OnceLock<bool> = OnceLock::new();
-    let ok = *DONE.get_or_init(|| {
-        [
-            FontStyle::Normal,
-            FontStyle::Bold,
-            FontStyle::Italic,
-            FontStyle::Oblique,
-        ]
-        .into_iter()
-        .all(|style| plotters::style::register_font(FAMILY, style, FONT).is_ok())
-    });
-    if ok {
-        Ok(())
-    } else {
-        Err(Error::Font)
-    }
-}
+type PlotResult = std::result::Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
 /// Distinct colours (Matplotlib's "tab10").
 pub const PALETTE: [RGBColor; 10] = [
@@ -324,45 +301,33 @@ where
     Ok(())
 }
 
-/// Draws `fig` into `dir/stem.png` and `dir/stem.svg`, each written atomically; returns both
-/// paths.
-pub fn render(fig: &Figure, dir: &Path, stem: &str) -> Result<Vec<std::path::PathBuf>, Error> {
-    register_font()?;
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-
-    // PNG: draw into an RGB buffer, encode in memory, then write atomically.
-    let (w, h) = fig.size;
-    let mut rgb = vec![0u8; (w * h * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, fig.size).into_drawing_area();
-        draw_figure(&root, fig).map_err(|e| Error::Plot {
-            path: png.clone(),
-            message: e.to_string(),
-        })?;
+impl Figure {
+    /// The figure as a PNG file (RGB, drawn in memory).
+    ///
+    /// # Errors
+    /// [`crate::Error::Font`], [`crate::Error::Draw`] or [`crate::Error::Encode`].
+    pub fn png(&self) -> Result<Vec<u8>> {
+        crate::font::register()?;
+        let (w, h) = self.size;
+        let mut rgb = vec![0u8; (w as usize) * (h as usize) * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, self.size).into_drawing_area();
+            draw_figure(&root, self).map_err(draw_err)?;
+        }
+        encode_png(&rgb, w, h)
     }
-    let mut encoded = Vec::new();
-    image::ImageEncoder::write_image(
-        image::codecs::png::PngEncoder::new(&mut encoded),
-        &rgb,
-        w,
-        h,
-        image::ColorType::Rgb8,
-    )
-    .map_err(|e| Error::Plot {
-        path: png.clone(),
-        message: e.to_string(),
-    })?;
-    write_atomic(&png, &encoded)?;
 
-    let mut text = String::new();
-    {
-        let root = SVGBackend::with_string(&mut text, fig.size).into_drawing_area();
-        draw_figure(&root, fig).map_err(|e| Error::Plot {
-            path: svg.clone(),
-            message: e.to_string(),
-        })?;
+    /// The figure as an SVG document.
+    ///
+    /// # Errors
+    /// [`crate::Error::Font`] or [`crate::Error::Draw`].
+    pub fn svg(&self) -> Result<String> {
+        crate::font::register()?;
+        let mut text = String::new();
+        {
+            let root = SVGBackend::with_string(&mut text, self.size).into_drawing_area();
+            draw_figure(&root, self).map_err(draw_err)?;
+        }
+        Ok(text)
     }
-    write_atomic(&svg, text.as_bytes())?;
-    Ok(vec![png, svg])
 }

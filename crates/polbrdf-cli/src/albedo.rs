@@ -1,0 +1,135 @@
+//! `polbrdf albedo`: the directional–hemispherical reflectance of a material at a set of
+//! incidence angles, with every value above 1 (a parameter set that creates energy) flagged.
+
+use crate::error::CliError;
+use crate::map::load;
+use polbrdf::{directional_hemispherical, Albedo};
+use polbrdf_io::csv_io::fmt_f64;
+use std::path::PathBuf;
+
+/// `polbrdf albedo`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Material: a TOML file, or a preset name (see `polbrdf materials`).
+    #[arg(long, value_name = "FILE.toml|PRESET")]
+    pub material: String,
+    /// Incidence angle(s) in degrees, in [0, 90); repeat the option or separate with commas.
+    /// Default: 0, 5, …, 85.
+    #[arg(
+        long,
+        value_name = "DEG",
+        value_delimiter = ',',
+        allow_negative_numbers = true
+    )]
+    pub theta_i_deg: Vec<f64>,
+    /// Also write the table as CSV (theta_i_deg, albedo, surface, volume, exceeds_one).
+    #[arg(long, value_name = "albedo.csv")]
+    pub output: Option<PathBuf>,
+}
+
+/// Runs `polbrdf albedo`.
+pub fn run(args: &Args) -> Result<(), CliError> {
+    let angles: Vec<f64> = if args.theta_i_deg.is_empty() {
+        (0..18).map(|k| 5.0 * f64::from(k)).collect()
+    } else {
+        args.theta_i_deg.clone()
+    };
+    if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
+        return Err(CliError::Invalid(format!(
+            "--theta-i-deg = {bad}: the incidence angle must lie in [0, 90)"
+        )));
+    }
+    let (material, name) = load(&args.material, "--material")?;
+    // One chunk of angles per core.
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let chunk = angles.len().div_ceil(cores).max(1);
+    let rows: Vec<Albedo> = std::thread::scope(|scope| {
+        let handles: Vec<_> = angles
+            .chunks(chunk)
+            .map(|ts| {
+                let m = &material;
+                scope.spawn(move || {
+                    ts.iter()
+                        .map(|t| directional_hemispherical(m, t.to_radians()))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("albedo thread"))
+            .collect()
+    });
+
+    if let Some(path) = &args.output {
+        let mut text = String::from("theta_i_deg,albedo,surface,volume,exceeds_one\n");
+        for (t, a) in angles.iter().zip(&rows) {
+            text += &format!(
+                "{},{},{},{},{}\n",
+                fmt_f64(*t),
+                fmt_f64(a.total()),
+                fmt_f64(a.surface),
+                fmt_f64(a.volume),
+                a.total() > 1.0
+            );
+        }
+        polbrdf_io::write_atomic(path, text.as_bytes())?;
+    }
+
+    let mut out = format!(
+        "polbrdf albedo: directional–hemispherical reflectance of {name}\n\
+         ρ(θi) = ∫ f(θi; θr, φr) cosθr dΩr over the viewing hemisphere; above 1 the parameters \
+         create energy\n\n  {:>7} {:>10} {:>10} {:>10}\n",
+        "θi (°)", "albedo", "surface", "volume"
+    );
+    for (t, a) in angles.iter().zip(&rows) {
+        out += &format!(
+            "  {:>7} {:>10.6} {:>10.6} {:>10.6}",
+            fmt_angle(*t),
+            a.total(),
+            a.surface,
+            a.volume
+        );
+        if a.total() > 1.0 {
+            out += &format!(
+                "   <-- EXCEEDS 1 by {:.4} ({:.1} %)",
+                a.total() - 1.0,
+                100.0 * (a.total() - 1.0)
+            );
+        }
+        out.push('\n');
+    }
+    let over: Vec<(f64, f64)> = angles
+        .iter()
+        .zip(&rows)
+        .filter(|(_, a)| a.total() > 1.0)
+        .map(|(t, a)| (*t, a.total()))
+        .collect();
+    out.push('\n');
+    if let Some(&(t, v)) = over.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+        out += &format!(
+            "WARNING: the albedo exceeds 1 at {} of {} incidence angles (largest {:.4} at θi = {}°): \
+             this parameter set violates energy conservation there.\n",
+            over.len(),
+            rows.len(),
+            v,
+            fmt_angle(t)
+        );
+    } else {
+        let max = rows.iter().map(Albedo::total).fold(0.0, f64::max);
+        out += &format!(
+            "The albedo stays at or below 1 at every incidence angle given (largest {max:.4}): \
+             energy is conserved there.\n"
+        );
+    }
+    print!("{out}");
+    Ok(())
+}
+
+fn fmt_angle(t: f64) -> String {
+    if t == t.round() {
+        format!("{t:.1}")
+    } else {
+        fmt_f64(t)
+    }
+}

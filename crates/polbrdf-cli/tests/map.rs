@@ -1,0 +1,108 @@
+//! `polbrdf map`: one material over the viewing hemisphere.
+
+use crate::common::{polbrdf, stderr};
+use crate::contrast::{decode, fraction_shown, Table};
+use polbrdf::{Geometry, Stokes};
+use polbrdf_plot::{ColorScale, Colormap};
+
+#[test]
+fn map_writes_csv_and_maps_of_the_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m");
+    let o = polbrdf(&[
+        "map",
+        "--material",
+        "paint",
+        "--sun-zenith-deg",
+        "45",
+        "--sun-azimuth-deg",
+        "30",
+        "--grid-deg",
+        "1.5,3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "aolp.png",
+            "aolp.svg",
+            "brdf.png",
+            "brdf.svg",
+            "dolp.png",
+            "dolp.svg",
+            "map.csv",
+            "overview.png",
+            "overview.svg"
+        ]
+    );
+    let t = Table::read(&out.join("map.csv"));
+    assert_eq!(
+        t.header,
+        [
+            "theta_r_deg",
+            "phi_r_deg",
+            "brdf",
+            "s0",
+            "s1",
+            "s2",
+            "s3",
+            "dolp",
+            "aolp_deg"
+        ]
+    );
+    assert_eq!(t.rows.len(), 60 * 120);
+    let paint = polbrdf::preset("paint").unwrap().build().unwrap();
+    for r in t.rows.iter().step_by(97) {
+        let g = Geometry::from_degrees(45.0, 30.0, r[0], r[1]).unwrap();
+        let e = paint.evaluate(&g);
+        assert!((r[2] - e.brdf()).abs() <= 1e-12 * e.brdf(), "{r:?}");
+        assert_eq!(r[2], r[3], "unpolarized input: S0 is the BRDF");
+        assert!((r[7] - e.dolp()).abs() < 1e-12, "{r:?}");
+        let s = e.reflect(&Stokes::unpolarized());
+        assert!((r[8] - s.aolp().to_degrees()).abs() < 1e-9);
+    }
+    let shown = fraction_shown(
+        &out.join("dolp.png"),
+        &t.grid("dolp"),
+        &ColorScale::linear(Colormap::Viridis, 0.0, 1.0, "DoLP"),
+    );
+    assert!(
+        shown > 0.85,
+        "dolp.png shows map.csv at {shown:.3} of the pixels"
+    );
+    let (w, h, _) = decode(&out.join("overview.png"));
+    assert_eq!((w, h), (3 * 620, 580));
+}
+
+#[test]
+fn map_refuses_bad_input_with_exit_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m");
+    for args in [
+        vec!["--material", "unobtainium", "--sun-zenith-deg", "30"],
+        vec!["--material", "paint", "--sun-zenith-deg", "-10"],
+        vec!["--material", "paint", "--sun-zenith-deg", "90"],
+        vec![
+            "--material",
+            "paint",
+            "--sun-zenith-deg",
+            "30",
+            "--grid-deg",
+            "x",
+        ],
+    ] {
+        let mut a = vec!["map"];
+        a.extend(&args);
+        a.extend(["--out", out.to_str().unwrap()]);
+        let o = polbrdf(&a);
+        assert_eq!(o.status.code(), Some(3), "{args:?}: {}", stderr(&o));
+        assert!(!out.exists());
+    }
+}

@@ -1,0 +1,80 @@
+//! In-memory encoding: PNG bytes from an RGB buffer, and raster images embedded in SVG.
+
+use crate::error::{Error, Result};
+
+/// Maps a plotters drawing error to [`Error::Draw`].
+pub(crate) fn draw_err<E: std::fmt::Display>(e: E) -> Error {
+    Error::Draw(e.to_string())
+}
+
+/// Encodes an 8-bit RGB buffer (`w·h·3` bytes, row-major) as a PNG file.
+///
+/// # Errors
+/// [`Error::Encode`] when the buffer does not match the size.
+pub fn encode_png(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    let mut out = Vec::new();
+    image::ImageEncoder::write_image(
+        PngEncoder::new_with_quality(&mut out, CompressionType::Default, FilterType::Adaptive),
+        rgb,
+        w,
+        h,
+        image::ColorType::Rgb8,
+    )
+    .map_err(|e| Error::Encode(e.to_string()))?;
+    Ok(out)
+}
+
+/// Standard base64 (RFC 4648, with padding).
+pub(crate) fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            chunk.get(1).copied().unwrap_or(0),
+            chunk.get(2).copied().unwrap_or(0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                s.push(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// An `<image>` element showing `png` at `(x, y)` with size `w × h` user units.
+pub(crate) fn svg_image(x: i32, y: i32, w: u32, h: u32, png: &[u8]) -> String {
+    format!(
+        "<image x=\"{x}\" y=\"{y}\" width=\"{w}\" height=\"{h}\" preserveAspectRatio=\"none\" \
+         style=\"image-rendering:optimizeSpeed\" href=\"data:image/png;base64,{}\"/>\n",
+        base64(png)
+    )
+}
+
+/// Inserts `elements` right after the background (the first element after the `<svg>` tag), so
+/// that everything drawn afterwards lies above them.
+///
+/// # Errors
+/// [`Error::Draw`] when `svg` does not have that shape.
+pub(crate) fn insert_after_background(svg: &mut String, elements: &str) -> Result<()> {
+    let open = svg
+        .find("<svg")
+        .and_then(|i| svg[i..].find('>').map(|j| i + j + 1))
+        .ok_or_else(|| Error::Draw("SVG output has no <svg> tag".into()))?;
+    let bg_end = svg[open..]
+        .find("/>")
+        .map(|j| open + j + 2)
+        .ok_or_else(|| Error::Draw("SVG output has no background element".into()))?;
+    let at = if svg[bg_end..].starts_with('\n') {
+        bg_end + 1
+    } else {
+        bg_end
+    };
+    svg.insert_str(at, elements);
+    Ok(())
+}

@@ -1,0 +1,3 @@
+//! Tests of the figures (one test binary, modules by topic).
+
+mod polar;
