@@ -73,6 +73,9 @@ enum Command {
         /// Seed of the extra starts.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Also draw the normalized residuals (model − data)/σ: a .png or .svg file.
+        #[arg(long, value_name = "residuals.png|.svg")]
+        plot: Option<PathBuf>,
     },
     /// Regenerate the paper's Figs. 2–5 and Table 1 (PNG, SVG, CSV) with report.md, which
     /// checks each of the paper's claims against the computation.
@@ -143,6 +146,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
             material_out,
             starts,
             seed,
+            plot,
         } => fit::run(&fit::Args {
             material: &material,
             data: &data,
@@ -151,6 +155,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
             material_out: material_out.as_deref(),
             starts,
             seed,
+            plot: plot.as_deref(),
         }),
         Command::Reproduce { out } => reproduce::run(&out),
         Command::Materials { show } => materials::run(show.as_deref()),

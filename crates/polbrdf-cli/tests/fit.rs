@@ -24,6 +24,8 @@ fn the_readme_example_recovers_the_known_paint() {
         json_path.to_str().unwrap(),
         "--material-out",
         toml_path.to_str().unwrap(),
+        "--plot",
+        dir.path().join("residuals.svg").to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(

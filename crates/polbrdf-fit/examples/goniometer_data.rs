@@ -1,7 +1,8 @@
 //! Writes the synthetic goniometer data set shipped as `examples/paint-goniometer.csv`:
 //! in-plane BRDF and DoLP at three incidence angles plus a backscatter sweep, from a known
 //! paint (n = 1.58, σ = 11°, ρ_D = 0.025, ρ_V = 0.012 sr⁻¹), with 3 % (+1e-4 sr⁻¹) noise on the
-//! BRDF and 0.01 on the DoLP, each with its σ column.
+//! BRDF and 0.01 on the DoLP (Gaussian, not clipped: a DoLP near 0 can come out slightly
+//! negative, as a raw polarimeter estimate can), each with its σ column.
 //!
 //! `cargo run -p polbrdf-fit --example goniometer_data > examples/paint-goniometer.csv`
 
@@ -20,7 +21,8 @@ fn main() {
         let sb = 0.03 * e.brdf() + 1e-4;
         let sd = 0.01;
         let b = e.brdf() + sb * rng.sample();
-        let d = (e.dolp() + sd * rng.sample()).clamp(0.0, 1.0);
+        // Not clipped to [0, 1]: clipping would bias the data near DoLP = 0 (backscatter).
+        let d = e.dolp() + sd * rng.sample();
         println!("{ti},{pi},{tr},{pr},{b:.6e},{sb:.3e},{d:.5},{sd}");
     };
     for ti in [20.0, 40.0, 60.0] {
