@@ -31,7 +31,8 @@ pub struct GeometryTable {
     pub geometries: Vec<Geometry>,
 }
 
-fn read_all(path: &Path) -> Result<Vec<u8>> {
+/// The bytes of `path`, or of standard input for `-`.
+pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     let read_err = |source| Error::Read {
         path: path.to_path_buf(),
         source,
@@ -55,9 +56,9 @@ struct RawTable {
     index: Vec<usize>,
 }
 
-/// Reads a CSV file whose header names columns, with `required` columns among them.
-fn read_table(path: &Path, required: &[&str]) -> Result<RawTable> {
-    let bytes = read_all(path)?;
+/// Parses CSV text whose header names columns, with `required` columns among them; `path` is
+/// used in messages only.
+fn parse_table(bytes: &[u8], path: &Path, required: &[&str]) -> Result<RawTable> {
     let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
     if let Err(e) = std::str::from_utf8(bytes) {
         let line = bytes[..e.valid_up_to()]
@@ -196,12 +197,20 @@ fn truncate(s: &str) -> String {
 /// file, missing columns), [`Error::Field`] (a non-number or an invalid angle, with line and
 /// column).
 pub fn read_geometry_csv(path: &Path) -> Result<GeometryTable> {
+    parse_geometry_csv(&read_all(path)?, path)
+}
+
+/// Parses the bytes of a geometry CSV; `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_geometry_csv`], except [`Error::Read`].
+pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
     let RawTable {
         headers,
         rows,
         lines,
         index: idx,
-    } = read_table(path, &ANGLE_COLUMNS)?;
+    } = parse_table(bytes, path, &ANGLE_COLUMNS)?;
     let mut geometries = Vec::with_capacity(rows.len());
     for (row, &line) in rows.iter().zip(&lines) {
         let mut deg = [0.0; 4];

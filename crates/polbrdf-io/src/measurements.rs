@@ -48,13 +48,21 @@ pub struct MeasurementTable {
 /// line, and [`Error::File`] when no measured column is present or a `sigma_` column has no
 /// quantity.
 pub fn read_measurements_csv(path: &Path) -> Result<MeasurementTable> {
+    parse_measurements_csv(&crate::csv_io::read_all(path)?, path)
+}
+
+/// Parses the bytes of a measurement CSV; `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_measurements_csv`], except [`Error::Read`].
+pub fn parse_measurements_csv(bytes: &[u8], path: &Path) -> Result<MeasurementTable> {
     let crate::GeometryTable {
         headers,
         rows,
         lines,
         geometries,
         ..
-    } = crate::read_geometry_csv(path)?;
+    } = crate::csv_io::parse_geometry_csv(bytes, path)?;
     let measurable = measurable_columns();
     for h in &headers {
         if let Some(q) = h.strip_prefix("sigma_") {

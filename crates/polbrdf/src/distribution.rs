@@ -1,6 +1,6 @@
 //! The facet distribution `D(θN) = a·exp(−b·θN²)` (eq. 4, spec §4).
 
-use crate::error::{non_negative, positive, Result};
+use crate::error::{at_most, non_negative, positive, Result, MAX_MAGNITUDE};
 use crate::quadrature::integrate;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -13,14 +13,14 @@ pub struct Distribution {
 }
 
 impl Distribution {
-    /// Explicit `a` (sr⁻¹, ≥ 0) and `b` (rad⁻², > 0).
+    /// Explicit `a` (sr⁻¹, `0 ≤ a ≤ 10¹⁰⁰`) and `b` (rad⁻², `0 < b ≤ 10¹⁰⁰`).
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming `a` or `b`.
     pub fn new(a: f64, b: f64) -> Result<Self> {
         Ok(Self {
-            a: non_negative("a", a)?,
-            b: positive("b", b)?,
+            a: at_most("a", non_negative("a", a)?, MAX_MAGNITUDE, TOO_LARGE)?,
+            b: checked_b("b", b)?,
         })
     }
 
@@ -30,7 +30,7 @@ impl Distribution {
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming `b`.
     pub fn normalized(b: f64) -> Result<Self> {
-        let b = positive("b", b)?;
+        let b = checked_b("b", b)?;
         Ok(Self {
             a: normalization(b),
             b,
@@ -71,6 +71,13 @@ impl Distribution {
     pub fn projected_integral(&self) -> f64 {
         self.a * 2.0 * PI * half_integral(self.b)
     }
+}
+
+const TOO_LARGE: &str = "must be ≤ 1e100 (larger values overflow the BRDF near the horizon)";
+
+/// `0 < b ≤ 10¹⁰⁰` (σ ≥ 10⁻⁵⁰ rad): a normalized `a ≈ b/π` stays finite in every output.
+pub(crate) fn checked_b(name: &'static str, b: f64) -> Result<f64> {
+    at_most(name, positive(name, b)?, MAX_MAGNITUDE, TOO_LARGE)
 }
 
 /// `∫_0^{π/2} exp(−bθ²) sinθ cosθ dθ`, by composite Gauss–Legendre on the support where the

@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum Error {
     /// A material/model parameter is outside its physical domain (spec §2, §4).
-    #[error("invalid parameter `{name}` = {value}: {reason}")]
+    #[error("invalid parameter `{name}` = {value:?}: {reason}")]
     InvalidParameter {
         /// The parameter's name as the user spells it (e.g. `sigma_deg`, `n`).
         name: &'static str,
@@ -15,7 +15,7 @@ pub enum Error {
         reason: &'static str,
     },
     /// A direction angle is NaN/∞ or outside its range (spec §1).
-    #[error("invalid angle `{name}` = {value}{}: {reason}", index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
+    #[error("invalid angle `{name}` = {value:?}{}: {reason}", index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
     InvalidAngle {
         /// `theta_i`, `phi_i`, `theta_r` or `phi_r` (with `_deg` when given in degrees).
         name: &'static str,
@@ -69,6 +69,33 @@ pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
             name,
             value,
             reason: "must be finite and >= 0",
+        })
+    }
+}
+
+/// Largest accepted `n` and `k`. Beyond radio-frequency metals (|N| ~ 10⁴); larger values would
+/// overflow the complex Fresnel arithmetic (|N²|² must stay finite).
+pub const MAX_INDEX: f64 = 1e6;
+
+/// Largest accepted `a`, `b` (and so `b/π` for a normalized `a`), `ρ_D`, `ρ_V`: with it every
+/// output stays finite even where the paper form's 1/cos⁴ reaches its f64 maximum (~1e65) next to
+/// the horizon.
+pub const MAX_MAGNITUDE: f64 = 1e100;
+
+/// Checks that `value` is at most `max` (after the sign checks above).
+pub(crate) fn at_most(
+    name: &'static str,
+    value: f64,
+    max: f64,
+    reason: &'static str,
+) -> Result<f64> {
+    if value <= max {
+        Ok(value)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            reason,
         })
     }
 }

@@ -1,7 +1,7 @@
 //! Fresnel reflection amplitudes for a complex index `N = n + ik` (spec §2; the a_ss, a_pp of
 //! eq. 10–11 and R_F of eq. 1).
 
-use crate::error::{non_negative, positive, Result};
+use crate::error::{at_most, non_negative, positive, Result, MAX_INDEX};
 use num_complex::Complex64;
 
 /// Complex refractive index `N = n + ik` of the reflecting medium, with `n > 0`, `k ≥ 0`
@@ -16,12 +16,13 @@ impl RefractiveIndex {
     /// `N = n + ik`.
     ///
     /// # Errors
-    /// [`crate::Error::InvalidParameter`] unless `n` is finite and `> 0` and `k` is finite and
-    /// `≥ 0`.
+    /// [`crate::Error::InvalidParameter`] unless `0 < n ≤ 10⁶` and `0 ≤ k ≤ 10⁶`
+    /// ([`crate::error::MAX_INDEX`]).
     pub fn new(n: f64, k: f64) -> Result<Self> {
+        const WHY: &str = "must be ≤ 1e6 (larger indices overflow the Fresnel arithmetic)";
         Ok(Self {
-            n: positive("n", n)?,
-            k: non_negative("k", k)?,
+            n: at_most("n", positive("n", n)?, MAX_INDEX, WHY)?,
+            k: at_most("k", non_negative("k", k)?, MAX_INDEX, WHY)?,
         })
     }
 

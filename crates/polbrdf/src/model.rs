@@ -105,16 +105,16 @@ impl MaterialSpec {
             (Some(s), None) => {
                 let sigma = crate::error::positive("sigma_deg", s)?.to_radians();
                 let b = 1.0 / (sigma * sigma);
-                if !(b.is_finite() && b > 0.0) {
+                if !(b > 0.0 && b <= crate::error::MAX_MAGNITUDE) {
                     return Err(Error::InvalidParameter {
                         name: "sigma_deg",
                         value: s,
-                        reason: "out of range: b = 1/σ² must be finite and > 0",
+                        reason: "out of range: b = 1/σ² must lie in (0, 1e100]",
                     });
                 }
                 b
             }
-            (None, Some(b)) => crate::error::positive("b", b)?,
+            (None, Some(b)) => crate::distribution::checked_b("b", b)?,
             (Some(_), Some(_)) => {
                 return Err(Error::InconsistentParameters(
                     "give exactly one of `sigma_deg` and `b`, not both".into(),
@@ -139,10 +139,20 @@ impl MaterialSpec {
             distribution,
             shadowing: self.shadowing.then_some(shadowing),
             form: self.form,
-            rho_d: non_negative("rho_d", self.rho_d)?,
-            rho_v: non_negative("rho_v", self.rho_v)?,
+            rho_d: rho("rho_d", self.rho_d)?,
+            rho_v: rho("rho_v", self.rho_v)?,
         })
     }
+}
+
+/// `0 ≤ ρ ≤ 10¹⁰⁰`.
+fn rho(name: &'static str, v: f64) -> Result<f64> {
+    crate::error::at_most(
+        name,
+        non_negative(name, v)?,
+        crate::error::MAX_MAGNITUDE,
+        "must be ≤ 1e100 (larger values overflow the BRDF near the horizon)",
+    )
 }
 
 /// A validated material: everything the model needs to evaluate the pBRDF.

@@ -1147,7 +1147,7 @@ fn invalid_inputs_are_errors_naming_parameter_and_value() {
     assert_names(bad(&|s| s.sigma_deg = Some(-3.0)), "sigma_deg", "-3");
     // σ so small that b = 1/σ² overflows (the value is shown as Rust displays an f64).
     let e = bad(&|s| s.sigma_deg = Some(1e-200));
-    assert_names(e, "sigma_deg", &format!("{}", 1e-200));
+    assert_names(e, "sigma_deg", &format!("{:?}", 1e-200));
     assert_names(
         bad(&|s| {
             s.sigma_deg = None;

@@ -1,6 +1,7 @@
 //! Integration tests of the core (one test binary, modules by topic).
 
 mod albedo;
+mod bounds;
 mod common;
 mod contrast;
 mod limits;
