@@ -7,6 +7,8 @@ pub enum CliError {
     Model(polbrdf::Error),
     Output(std::io::Error),
     Fit(polbrdf_fit::FitError),
+    /// `polbrdf check` found a violation (already printed).
+    CheckFailed,
     Reproduce(polbrdf_reproduce::Error),
     /// The fit ran but did not converge: results were written, flagged.
     NotConverged(String),
@@ -24,6 +26,7 @@ impl CliError {
             CliError::Model(_) => 3,
             CliError::Output(_) => 4,
             CliError::Fit(_) => 3,
+            CliError::CheckFailed => 6,
             CliError::Reproduce(polbrdf_reproduce::Error::Io { .. }) => 4,
             CliError::Reproduce(_) => 1,
             CliError::NotConverged(_) => 5,
@@ -40,6 +43,7 @@ impl std::fmt::Display for CliError {
             CliError::Model(e) => write!(f, "{e}"),
             CliError::Output(e) => write!(f, "cannot write to standard output: {e}"),
             CliError::Fit(e) => write!(f, "fit: {e}"),
+            CliError::CheckFailed => write!(f, "check: the parameter set is not physically valid everywhere (see above)"),
             CliError::Reproduce(e) => write!(f, "reproduce: {e}"),
             CliError::Invalid(m) => write!(f, "{m}"),
             CliError::Plot(e) => write!(f, "figure: {e}"),

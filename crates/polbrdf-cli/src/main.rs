@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 mod albedo;
+mod check;
 mod contrast;
 mod error;
 mod eval;
@@ -100,6 +101,17 @@ enum Command {
     /// Writes into --out: map.csv (one row per viewing direction), brdf, dolp, aolp and
     /// overview (PNG and SVG).
     Map(map::Args),
+    /// Check that a parameter set is physically valid: F realizable (coherency matrix positive
+    /// semidefinite) over a dense grid, albedo ≤ 1 at every incidence angle, and reciprocity where
+    /// the model form has it. Exit code 6 when a check fails.
+    Check {
+        /// A TOML file or a preset name.
+        #[arg(long, value_name = "FILE.toml|PRESET")]
+        material: String,
+        /// Zenith step of the grid in degrees (the relative azimuth uses twice this step).
+        #[arg(long, value_name = "DEG", default_value_t = 5.0)]
+        grid_deg: f64,
+    },
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -158,6 +170,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
             plot: plot.as_deref(),
         }),
         Command::Reproduce { out } => reproduce::run(&out),
+        Command::Check { material, grid_deg } => check::run(&material, grid_deg),
         Command::Materials { show } => materials::run(show.as_deref()),
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),

@@ -1,6 +1,7 @@
 //! Integration tests of the `polbrdf` binary (one test binary, modules by topic).
 
 mod albedo;
+mod bad_inputs;
 mod common;
 mod contrast;
 mod eval;

@@ -59,7 +59,7 @@ struct RawTable {
 /// Parses CSV text whose header names columns, with `required` columns among them; `path` is
 /// used in messages only.
 fn parse_table(bytes: &[u8], path: &Path, required: &[&str]) -> Result<RawTable> {
-    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(&bytes);
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
     if let Err(e) = std::str::from_utf8(bytes) {
         let line = bytes[..e.valid_up_to()]
             .iter()

@@ -25,6 +25,7 @@
 
 pub mod albedo;
 pub mod batch;
+pub mod check;
 pub mod contrast;
 pub mod distribution;
 pub mod error;
@@ -40,6 +41,7 @@ pub mod shadowing;
 
 pub use albedo::{directional_hemispherical, Albedo};
 pub use batch::GeometryBatch;
+pub use check::{physical_validity, CheckGrid, ValidityReport};
 pub use contrast::{Contrast, ContrastSample, Illumination, RankOptions, Ranking, ViewGrid};
 pub use distribution::Distribution;
 pub use error::{Error, Result};

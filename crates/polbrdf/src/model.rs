@@ -295,7 +295,14 @@ impl Material {
         let volume = self.volume_term(v.theta_i, v.theta_r);
         let m = Mueller::from_jones(&Jones::microfacet(&fresnel, v.eta_i, v.eta_r));
         let m00 = m.0[0][0];
-        let mut f = if m00 > 0.0 && surface > 0.0 {
+        // A surface term below the smallest normal f64 (~2e-308 sr⁻¹) is flushed to zero: a
+        // subnormal keeps too few bits for its polarization to be meaningful (DoP could exceed 1).
+        let surface = if m00 > 0.0 && surface >= f64::MIN_POSITIVE {
+            surface
+        } else {
+            0.0
+        };
+        let mut f = if surface > 0.0 {
             m.scaled(surface / m00)
         } else {
             Mueller::zero()
@@ -303,7 +310,7 @@ impl Material {
         f.0[0][0] += volume;
         Evaluation {
             pbrdf: f,
-            surface: if m00 > 0.0 { surface } else { 0.0 },
+            surface,
             volume,
             terms: Some(SurfaceTerms {
                 angles: *v,

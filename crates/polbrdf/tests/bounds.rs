@@ -12,7 +12,14 @@ fn worst_geometries() -> Vec<Geometry> {
         Geometry::from_degrees(t, 0.0, t, 0.0).unwrap(),
         Geometry::from_degrees(t, 0.0, 0.0, 0.0).unwrap(),
         Geometry::from_degrees(45.0, 10.0, 45.0, 190.0).unwrap(),
-        Geometry::new(std::f64::consts::FRAC_PI_2.next_down(), 0.0, 0.3, 3.0).unwrap(),
+        // The largest f64 below π/2.
+        Geometry::new(
+            f64::from_bits(std::f64::consts::FRAC_PI_2.to_bits() - 1),
+            0.0,
+            0.3,
+            3.0,
+        )
+        .unwrap(),
     ]
 }
 
@@ -67,7 +74,8 @@ fn the_largest_accepted_values_stay_finite_everywhere() {
 
 #[test]
 fn one_step_beyond_is_an_error_naming_the_key() {
-    let cases: Vec<(&str, Box<dyn Fn(&mut MaterialSpec)>)> = vec![
+    type Edit = Box<dyn Fn(&mut MaterialSpec)>;
+    let cases: Vec<(&str, Edit)> = vec![
         ("`n` = 1000001.0", Box::new(|s| s.n = 1e6 + 1.0)),
         ("`k` = 10000000.0", Box::new(|s| s.k = 1e7)),
         ("`a` = 1e101", Box::new(|s| s.a = Some(1e101))),
@@ -91,4 +99,38 @@ fn one_step_beyond_is_an_error_naming_the_key() {
         let e = s.build().unwrap_err().to_string();
         assert!(e.contains(want), "{e:?} lacks {want:?}");
     }
+}
+
+#[test]
+fn fuzzer_regression_subnormal_surface_term_keeps_dop_at_most_one() {
+    // Found by `cargo fuzz run model`: a subnormal amplitude gave a surface matrix with ~5
+    // significant bits and an output DoP of 1.000016. Such a term is now flushed to zero.
+    let spec = MaterialSpec {
+        name: None,
+        n: 0.010000000000000004,
+        k: 2.64184331452147e-310,
+        sigma_deg: Some(10.000000000000002),
+        b: None,
+        a: Some(1.259867e-318),
+        form: Form::Standard,
+        shadowing: false,
+        tau_deg: 0.10000000000000002,
+        omega_deg: 0.10000000000000002,
+        azimuth_term: polbrdf::AzimuthTerm::None,
+        rho_d: 0.0,
+        rho_v: 0.0,
+    };
+    let g = Geometry::new(
+        2.18446115236903e-309,
+        -12.566370614359172,
+        0.0,
+        -12.566370614359172,
+    )
+    .unwrap();
+    let e = spec.build().unwrap().evaluate(&g);
+    for psi in [0.0, 0.3, 1.0] {
+        let out = e.pbrdf.apply(&polbrdf::Stokes::linear(psi));
+        assert!(out.dop() <= 1.0, "DoP {}", out.dop());
+    }
+    assert_eq!(e.surface, 0.0);
 }
