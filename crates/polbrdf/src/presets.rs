@@ -5,8 +5,7 @@
 //! Johnson & Christy, Phys. Rev. B 9, 5056 (1974). Values rounded to three significant figures.
 
 use crate::error::{Error, Result};
-use crate::model::{Form, MaterialSpec};
-use crate::shadowing::AzimuthTerm;
+use crate::model::MaterialSpec;
 
 /// One preset: its name, a one-line description and its spec.
 #[derive(Debug, Clone)]
@@ -22,18 +21,10 @@ pub struct Preset {
 fn spec(name: &str, n: f64, k: f64, sigma_deg: f64, rho_d: f64, rho_v: f64) -> MaterialSpec {
     MaterialSpec {
         name: Some(name.to_string()),
-        n,
         k,
-        sigma_deg: Some(sigma_deg),
-        b: None,
-        a: None,
-        form: Form::Standard,
-        shadowing: true,
-        tau_deg: 15.0,
-        omega_deg: 40.0,
-        azimuth_term: AzimuthTerm::None,
         rho_d,
         rho_v,
+        ..MaterialSpec::new(n, sigma_deg)
     }
 }
 
