@@ -8,9 +8,7 @@
 use crate::limits::reference::{self, Mat4, Model};
 use crate::limits::Lcg;
 use polbrdf::batch::{brdf_dolp_into, mueller, mueller_into};
-use polbrdf::{
-    Error, Evaluation, Geometry, GeometryBatch, Material, Mueller, RefractiveIndex, Stokes,
-};
+use polbrdf::{Error, Evaluation, Geometry, GeometryBatch, Material, RefractiveIndex, Stokes};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -218,7 +216,10 @@ proptest! {
         let e = m.evaluate(&Geometry::new(ti, pi, tr, pr).unwrap());
         let scale = want[0][0];
         prop_assert!(
-            max_diff(&e.pbrdf.0, &want, scale) <= 1e-9 || scale == 0.0 && e.pbrdf == Mueller::zero(),
+            max_diff(&e.pbrdf.0, &want, scale) <= 1e-9
+                // Below the normal f64 range the library flushes the surface term to zero
+                // (docs/model.md §9); the reference keeps its few subnormal bits.
+                || scale < f64::MIN_POSITIVE && e.pbrdf.0[0][0] < f64::MIN_POSITIVE,
             "library {:?}\nreference {want:?}", e.pbrdf.0
         );
         prop_assert!((e.surface - f_s).abs() <= 1e-9 * f_s + 1e-300, "f_s {} vs {f_s}", e.surface);
