@@ -13,7 +13,7 @@
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use polbrdf::batch::{self, GeometryBatch};
-use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec, Stokes};
+use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
 use pyo3::exceptions::{
     PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyValueError,
 };
@@ -578,17 +578,17 @@ fn evaluate_flat<'py>(
             .as_mut()
             .map(|m| m.as_slice_mut().expect("a new array is contiguous"));
         let m = &material.inner;
-        // AoLP of the reflected light for unpolarized input (the core's `Stokes::aolp`).
-        let aolp = |s: &Stokes| {
-            let a = s.aolp();
+        // BRDF, DoLP and AoLP (the core's `Stokes::dolp`/`Stokes::aolp` of F·(1, 0, 0, 0)) from
+        // the kernel's BRDF+DoLP+AoLP path, so that they are bitwise those of `brdf`/`dolp`.
+        let scalars = |g: &GeometryBatch<'_>, b: &mut [f64], d: &mut [f64], a: &mut [f64]| {
+            batch::brdf_dolp_aolp_into(m, g, b, d, a)?;
             if degrees {
-                a.to_degrees()
-            } else {
-                a
+                a.iter_mut().for_each(|x| *x = x.to_degrees());
             }
+            Ok(())
         };
         py.detach(|| {
-            let scalars = b
+            let chunks = b
                 .par_chunks_mut(CHUNK)
                 .zip(d.par_chunks_mut(CHUNK))
                 .zip(a.par_chunks_mut(CHUNK))
@@ -596,30 +596,17 @@ fn evaluate_flat<'py>(
             match f {
                 Some(f) => {
                     let (rows, _) = f.as_chunks_mut::<16>();
-                    scalars.zip(rows.par_chunks_mut(CHUNK)).try_for_each(
+                    chunks.zip(rows.par_chunks_mut(CHUNK)).try_for_each(
                         |((c, ((b, d), a)), rows)| {
                             chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
                                 batch::mueller_into(m, g, rows)?;
-                                // The scalars from the first column, as `Mueller::apply` gives
-                                // them for unpolarized input.
-                                for (((b, d), a), r) in b.iter_mut().zip(d).zip(a).zip(&*rows) {
-                                    let s = Stokes([r[0], r[4], r[8], r[12]]);
-                                    (*b, *d, *a) = (r[0], s.dolp(), aolp(&s));
-                                }
-                                Ok(())
+                                scalars(g, b, d, a)
                             })
                         },
                     )
                 }
-                None => scalars.try_for_each(|(c, ((b, d), a))| {
-                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                        for (j, ((b, d), a)) in b.iter_mut().zip(d).zip(a).enumerate() {
-                            let e = m.evaluate(&g.get(j));
-                            let s = e.reflect(&Stokes::unpolarized());
-                            (*b, *d, *a) = (e.brdf(), s.dolp(), aolp(&s));
-                        }
-                        Ok(())
-                    })
+                None => chunks.try_for_each(|(c, ((b, d), a))| {
+                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| scalars(g, b, d, a))
                 }),
             }
         })

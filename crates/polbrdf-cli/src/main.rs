@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 
 mod albedo;
+mod bench;
 mod check;
 mod contrast;
 mod error;
@@ -101,6 +102,10 @@ enum Command {
     /// Writes into --out: map.csv (one row per viewing direction), brdf, dolp, aolp and
     /// overview (PNG and SVG).
     Map(map::Args),
+    /// Throughput of the batch API (random valid geometries of `paint`): full-Mueller and
+    /// BRDF+DoLP evaluations per second on one thread and on all threads (medians of several
+    /// repeats), single-evaluation latency, a checksum and the CPU (with its SIMD level).
+    Bench(bench::Args),
     /// Check that a parameter set is physically valid: F realizable (coherency matrix positive
     /// semidefinite) over a dense grid, albedo ≤ 1 at every incidence angle, and reciprocity where
     /// the model form has it. Exit code 6 when a check fails.
@@ -175,5 +180,6 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Map(args) => map::run(&args),
+        Command::Bench(args) => bench::run(&args),
     }
 }

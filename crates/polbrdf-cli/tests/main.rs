@@ -2,6 +2,7 @@
 
 mod albedo;
 mod bad_inputs;
+mod bench;
 mod common;
 mod contrast;
 mod eval;

@@ -2,12 +2,16 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Geometry;
+use crate::kernel::Kernel;
 use crate::model::Material;
 use crate::mueller::Mueller;
 use rayon::prelude::*;
 
 /// Elements per parallel task: large enough to amortize scheduling, small enough to balance.
-const CHUNK: usize = 2048;
+const CHUNK: usize = 4096;
+
+/// Full-Mueller outputs of at least this many elements (8 MB) bypass the caches.
+const STREAM_MIN: usize = 1 << 16;
 
 /// Many geometries as four parallel slices of angles in radians (structure of arrays).
 #[derive(Debug, Clone, Copy)]
@@ -71,6 +75,11 @@ impl<'a> GeometryBatch<'a> {
         )
     }
 
+    /// The four columns (θi, φi, θr, φr), validated.
+    pub(crate) fn columns(&self) -> [&'a [f64]; 4] {
+        [self.theta_i, self.phi_i, self.theta_r, self.phi_r]
+    }
+
     /// The `i`-th geometry (validated at construction).
     pub fn get(&self, i: usize) -> Geometry {
         Geometry::new_unchecked(
@@ -96,6 +105,9 @@ fn check_len(name: &'static str, got: usize, expected: usize) -> Result<()> {
 
 /// The full pBRDF `F` (row-major 4×4, sr⁻¹) at every geometry, written into `out`.
 ///
+/// Evaluated by the vectorized [`crate::kernel`] (the same equations as
+/// [`Material::evaluate`], to within `1e-12·F00`), in parallel chunks.
+///
 /// # Errors
 /// [`Error::LengthMismatch`] when `out` is not as long as the batch.
 pub fn mueller_into(
@@ -104,17 +116,18 @@ pub fn mueller_into(
     out: &mut [[f64; 16]],
 ) -> Result<()> {
     check_len("out", out.len(), batch.len())?;
+    // Outputs far beyond the caches (≥ 8 MB) are written with non-temporal stores.
+    let kernel = Kernel::new(material).streaming(out.len() >= STREAM_MIN);
     out.par_chunks_mut(CHUNK)
         .enumerate()
-        .for_each(|(c, chunk)| {
-            for (j, o) in chunk.iter_mut().enumerate() {
-                *o = material.pbrdf(&batch.get(c * CHUNK + j)).to_row_major();
-            }
-        });
+        .for_each(|(c, chunk)| kernel.mueller_into(batch, c * CHUNK, chunk));
     Ok(())
 }
 
 /// The scalar BRDF `f` (sr⁻¹) and DoLP for unpolarized input at every geometry.
+///
+/// Evaluated by the vectorized [`crate::kernel`], which skips what these two need not (the
+/// rotation angles and all but three entries of `F`), in parallel chunks.
 ///
 /// # Errors
 /// [`Error::LengthMismatch`] when an output slice is not as long as the batch.
@@ -126,26 +139,51 @@ pub fn brdf_dolp_into(
 ) -> Result<()> {
     check_len("brdf", brdf.len(), batch.len())?;
     check_len("dolp", dolp.len(), batch.len())?;
+    let kernel = Kernel::new(material);
     brdf.par_chunks_mut(CHUNK)
         .zip(dolp.par_chunks_mut(CHUNK))
         .enumerate()
-        .for_each(|(c, (fb, fd))| {
-            for (j, (b, d)) in fb.iter_mut().zip(fd.iter_mut()).enumerate() {
-                let e = material.evaluate(&batch.get(c * CHUNK + j));
-                *b = e.brdf();
-                *d = e.dolp();
-            }
-        });
+        .for_each(|(c, (fb, fd))| kernel.brdf_dolp_into(batch, c * CHUNK, fb, fd));
     Ok(())
 }
 
-/// The pBRDF at every geometry of a slice of already validated geometries, in parallel.
+/// The scalar BRDF `f` (sr⁻¹), the DoLP and the AoLP (rad, in (−π/2, π/2], measured from the
+/// reflected beam's s axis toward its p axis; 0 without linear polarization) for unpolarized
+/// input at every geometry — `Stokes::dolp` and `Stokes::aolp` of `F·(1, 0, 0, 0)`.
+///
+/// Evaluated by the vectorized [`crate::kernel`] (only the reflected beam's rotation, and only
+/// the first column of `F`), in parallel chunks.
+///
+/// # Errors
+/// [`Error::LengthMismatch`] when an output slice is not as long as the batch.
+pub fn brdf_dolp_aolp_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    brdf: &mut [f64],
+    dolp: &mut [f64],
+    aolp: &mut [f64],
+) -> Result<()> {
+    check_len("brdf", brdf.len(), batch.len())?;
+    check_len("dolp", dolp.len(), batch.len())?;
+    check_len("aolp", aolp.len(), batch.len())?;
+    let kernel = Kernel::new(material);
+    brdf.par_chunks_mut(CHUNK)
+        .zip(dolp.par_chunks_mut(CHUNK))
+        .zip(aolp.par_chunks_mut(CHUNK))
+        .enumerate()
+        .for_each(|(c, ((fb, fd), fa))| kernel.brdf_dolp_aolp_into(batch, c * CHUNK, fb, fd, fa));
+    Ok(())
+}
+
+/// The pBRDF at every geometry of a slice of already validated geometries, in parallel
+/// (through the vectorized [`crate::kernel`]).
 pub fn pbrdf_of(material: &Material, geometries: &[Geometry]) -> Vec<Mueller> {
-    geometries
-        .par_iter()
-        .with_min_len(CHUNK)
-        .map(|g| material.pbrdf(g))
-        .collect()
+    let kernel = Kernel::new(material);
+    let mut out = vec![Mueller::zero(); geometries.len()];
+    out.par_chunks_mut(CHUNK)
+        .zip(geometries.par_chunks(CHUNK))
+        .for_each(|(o, g)| kernel.mueller_of(g, o));
+    out
 }
 
 /// Convenience: the pBRDF at every geometry as a new vector.

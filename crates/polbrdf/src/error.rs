@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum Error {
     /// A material/model parameter is outside its physical domain (spec §2, §4).
-    #[error("invalid parameter `{name}` = {value:?}: {reason}")]
+    #[error("invalid parameter `{name}` = {}: {reason}", show(*value))]
     InvalidParameter {
         /// The parameter's name as the user spells it (e.g. `sigma_deg`, `n`).
         name: &'static str,
@@ -15,7 +15,7 @@ pub enum Error {
         reason: &'static str,
     },
     /// A direction angle is NaN/∞ or outside its range (spec §1).
-    #[error("invalid angle `{name}` = {value:?}{}: {reason}", index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
+    #[error("invalid angle `{name}` = {}{}: {reason}", show(*value), index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
     InvalidAngle {
         /// `theta_i`, `phi_i`, `theta_r` or `phi_r` (with `_deg` when given in degrees).
         name: &'static str,
@@ -42,6 +42,16 @@ pub enum Error {
     /// A name was given that is not a known preset material.
     #[error("unknown material preset `{0}` (known: {known})", known = crate::presets::names().join(", "))]
     UnknownPreset(String),
+}
+
+/// A value as a message shows it: plainly (`200`, `-1.5`) in the ordinary range, in exponent
+/// form (`1e300`, `1e-200`) beyond it, so an absurd input does not print 300 digits.
+fn show(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
 }
 
 /// Shorthand for results of this crate.

@@ -7,6 +7,9 @@
 use crate::error::{Error, Result};
 use std::f64::consts::{FRAC_PI_2, PI};
 
+/// π/2 − `FRAC_PI_2` (the rounding error of `FRAC_PI_2`).
+const PIO2_LO: f64 = 6.123233995736766e-17;
+
 /// One illumination/viewing geometry in radians (the θi, Φi, θr, Φr of eq. 1).
 ///
 /// Construct it with [`Geometry::new`] or [`Geometry::from_degrees`], which reject NaN/∞ and
@@ -242,13 +245,18 @@ impl Geometry {
             (0.0, (cr * sd).atan2(-delta.cos()))
         };
 
-        // Half vector s = w_i + w_r (unnormalized); θN = atan2(|s_xy|, s_z).
-        let (spi, cpi) = self.phi_i.sin_cos();
-        let (spr, cpr) = self.phi_r.sin_cos();
-        let sx = si * cpi + sr * cpr;
-        let sy = si * spi + sr * spr;
+        // Half vector s = w_i + w_r (unnormalized): θN = atan2(|s_xy|, s_z), s_z = cosθi + cosθr.
+        // |s_xy|² = sin²θi + sin²θr + 2 sinθi sinθr cosΔ = (sinθi − sinθr)² + 4 sinθi sinθr cos²(Δ/2)
+        // with sinθi − sinθr = 2 cos v sin u, v = (θi + θr)/2, u = (θi − θr)/2: a sum of two
+        // squares (no cancellation, so θN keeps full relative accuracy near specular and toward
+        // grazing), symmetric in the two directions, and a function of Δ like β and η. cos v is
+        // sin(π/2 − v), from the complements π/2 − θ (accurate when both directions graze).
+        let complement = |t: f64| (FRAC_PI_2 - t) + PIO2_LO;
+        let cos_v = (0.5 * (complement(self.theta_i) + complement(self.theta_r))).sin();
+        let sin_u = (0.5 * (self.theta_i - self.theta_r)).sin();
+        let half_cos = (0.5 * delta).cos();
+        let rho = 2.0 * (cos_v * sin_u).hypot((si * sr).sqrt() * half_cos);
         let sz = ci + cr;
-        let rho = sx.hypot(sy);
         let theta_n = rho.atan2(sz);
         // Below rounding level of |s_xy| the facet is the macro normal (θN = 0) and ΦN = 0 (spec §1).
         // The azimuths themselves carry rounding errors of order ulp(|φ|) (e.g. φ + π, or a
@@ -256,10 +264,12 @@ impl Geometry {
         // the rounding level scales with max(1, |φi|, |φr|).
         let phi_scale = self.phi_i.abs().max(self.phi_r.abs()).max(1.0);
         let phi_n = if rho > 8.0 * f64::EPSILON * (si + sr) * phi_scale {
-            // Angle between the plane (z, h) and the plane of incidence, folded into [0, π/2].
-            // Relative azimuth of h w.r.t. φi: atan2(s·e_⊥, s·e_∥) with e_∥ = (cosφi, sinφi).
-            let along = sx * cpi + sy * spi;
-            let across = -sx * spi + sy * cpi;
+            // Angle between the plane (z, h) and the plane of incidence, folded into [0, π/2]:
+            // from the components of s along the plane of incidence,
+            // s∥ = sinθi + sinθr cosΔ = 2 cos v sin u + 2 sinθr cos²(Δ/2), and across it,
+            // s⊥ = sinθr sinΔ.
+            let along = 2.0 * (cos_v * sin_u + sr * half_cos * half_cos);
+            let across = sr * sd;
             let d = across.abs().atan2(along.abs());
             d.clamp(0.0, FRAC_PI_2)
         } else {

@@ -32,6 +32,7 @@ pub mod error;
 pub mod fresnel;
 pub mod geometry;
 pub mod jones;
+pub mod kernel;
 pub mod linalg;
 pub mod model;
 pub mod mueller;

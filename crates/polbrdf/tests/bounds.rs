@@ -76,8 +76,8 @@ fn the_largest_accepted_values_stay_finite_everywhere() {
 fn one_step_beyond_is_an_error_naming_the_key() {
     type Edit = Box<dyn Fn(&mut MaterialSpec)>;
     let cases: Vec<(&str, Edit)> = vec![
-        ("`n` = 1000001.0", Box::new(|s| s.n = 1e6 + 1.0)),
-        ("`k` = 10000000.0", Box::new(|s| s.k = 1e7)),
+        ("`n` = 1000001", Box::new(|s| s.n = 1e6 + 1.0)),
+        ("`k` = 10000000", Box::new(|s| s.k = 1e7)),
         ("`a` = 1e101", Box::new(|s| s.a = Some(1e101))),
         ("`rho_d` = 1e101", Box::new(|s| s.rho_d = 1e101)),
         ("`rho_v` = 1e101", Box::new(|s| s.rho_v = 1e101)),

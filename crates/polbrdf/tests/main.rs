@@ -4,6 +4,7 @@ mod albedo;
 mod bounds;
 mod common;
 mod contrast;
+mod kernel;
 mod limits;
 mod properties;
 mod vectors;

@@ -5,7 +5,7 @@
 
 #![allow(clippy::needless_range_loop)]
 
-use crate::limits::reference::{self, Mat4, Model};
+use crate::limits::reference::{self, Mat4, Model, OMEGA_DEG};
 use crate::limits::Lcg;
 use polbrdf::batch::{brdf_dolp_into, mueller, mueller_into};
 use polbrdf::{Error, Evaluation, Geometry, GeometryBatch, Material, RefractiveIndex, Stokes};
@@ -215,14 +215,22 @@ proptest! {
         let (f_s, f_v, want) = model.pbrdf(m.distribution().a(), ti, pi, tr, pr);
         let e = m.evaluate(&Geometry::new(ti, pi, tr, pr).unwrap());
         let scale = want[0][0];
+        // The vector reference forms |s_xy| = |s|·sinθN (|s| = 2cosβ) as the difference of two
+        // horizontal vectors whose components carry rounding errors of order
+        // ε·(sinθi + sinθr): its ΦN is uncertain by that over |s_xy| (the library's closed form
+        // keeps full relative accuracy near specular), and with eq3 so is its SO, by
+        // θi/Ω times as much.
+        let s_xy = 2.0 * a.beta.cos() * a.theta_n.sin();
+        let phi_n_tol = 8.0 * f64::EPSILON * (ti.sin() + tr.sin()) / s_xy;
+        let tol = 1e-9 + if model.eq3 { phi_n_tol * ti / OMEGA_DEG.to_radians() } else { 0.0 };
         prop_assert!(
-            max_diff(&e.pbrdf.0, &want, scale) <= 1e-9
+            max_diff(&e.pbrdf.0, &want, scale) <= tol
                 // Below the normal f64 range the library flushes the surface term to zero
                 // (docs/model.md §9); the reference keeps its few subnormal bits.
                 || scale < f64::MIN_POSITIVE && e.pbrdf.0[0][0] < f64::MIN_POSITIVE,
             "library {:?}\nreference {want:?}", e.pbrdf.0
         );
-        prop_assert!((e.surface - f_s).abs() <= 1e-9 * f_s + 1e-300, "f_s {} vs {f_s}", e.surface);
+        prop_assert!((e.surface - f_s).abs() <= tol * f_s + 1e-300, "f_s {} vs {f_s}", e.surface);
         prop_assert!((e.volume - f_v).abs() <= 1e-12 * f_v);
         // Eq. 13 on the reference matrix (where F00 is not lost in underflow: D of a narrow
         // lobe far from its peak can be ~1e-310).
@@ -234,7 +242,7 @@ proptest! {
             prop_assert!((t.angles.theta_n - a.theta_n).abs() < 1e-9);
             prop_assert!((t.angles.beta - a.beta).abs() < 1e-9);
             if a.theta_n >= 1e-9 {
-                prop_assert!((t.angles.phi_n - a.phi_n).abs() < 1e-7, "ΦN {} vs {}", t.angles.phi_n, a.phi_n);
+                prop_assert!((t.angles.phi_n - a.phi_n).abs() < 1e-7 + phi_n_tol, "ΦN {} vs {}", t.angles.phi_n, a.phi_n);
             }
         }
     }
@@ -431,6 +439,8 @@ proptest! {
 }
 
 fn check_batch(m: &Material, batch: &GeometryBatch<'_>) -> Result<(), TestCaseError> {
+    // The batch API runs the vectorized kernel (`polbrdf::kernel`): the same equations as
+    // `Material::evaluate`, to within 1e-12·F00 (tests/kernel.rs checks it in depth).
     let got = mueller(m, batch).unwrap();
     let mut brdf = vec![f64::NAN; batch.len()];
     let mut dolp = vec![f64::NAN; batch.len()];
@@ -438,9 +448,20 @@ fn check_batch(m: &Material, batch: &GeometryBatch<'_>) -> Result<(), TestCaseEr
     prop_assert_eq!(got.len(), batch.len());
     for i in 0..batch.len() {
         let e = m.evaluate(&batch.get(i));
-        prop_assert_eq!(got[i], e.pbrdf.to_row_major(), "element {}", i);
-        prop_assert_eq!(brdf[i].to_bits(), e.brdf().to_bits(), "brdf {}", i);
-        prop_assert_eq!(dolp[i].to_bits(), e.dolp().to_bits(), "dolp {}", i);
+        let want = e.pbrdf.to_row_major();
+        let f00 = want[0];
+        for (k, (g, w)) in got[i].iter().zip(&want).enumerate() {
+            prop_assert!(
+                (g - w).abs() <= 1e-12 * f00 || (f00 == 0.0 && *g == 0.0),
+                "element {} entry {}: {} vs {}",
+                i,
+                k,
+                g,
+                w
+            );
+        }
+        prop_assert!((brdf[i] - e.brdf()).abs() <= 1e-12 * e.brdf(), "brdf {}", i);
+        prop_assert!((dolp[i] - e.dolp()).abs() <= 1e-12, "dolp {}", i);
     }
     Ok(())
 }

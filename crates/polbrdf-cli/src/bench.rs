@@ -1,0 +1,267 @@
+//! `polbrdf bench`: throughput of the batch API on random valid geometries of the `paint`
+//! preset — full Mueller and BRDF+DoLP evaluations per second on one thread and on all threads
+//! (medians of several repeats), the latency of a single evaluation (through the kernel's
+//! single-geometry entry point, and through the reference path `Material::evaluate`), a checksum
+//! of the results and the CPU it ran on.
+
+use crate::error::CliError;
+use polbrdf::batch::{self, GeometryBatch};
+use polbrdf::kernel::Kernel;
+use polbrdf::Geometry;
+use serde_json::json;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// `polbrdf bench`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Number of random geometries (θ uniform in [0°, 89.9°], φ uniform in [0°, 360°)).
+    #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+    pub count: usize,
+    /// Threads of the parallel runs (default: every logical CPU).
+    #[arg(long, value_name = "T")]
+    pub threads: Option<usize>,
+    /// Timed repeats of each measurement; the medians are reported (at least 5).
+    #[arg(long, value_name = "R", default_value_t = 7)]
+    pub repeats: usize,
+    /// Print the results as one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// SplitMix64: a small deterministic generator, uniform in [0, 1). The same stream (seed 2024)
+/// as `python/examples/bench_batch.rs`, so the two benchmarks time the same inputs.
+struct Rng(u64);
+
+impl Rng {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn uniform(&mut self, lo: f64, hi: f64, n: usize) -> Vec<f64> {
+        (0..n).map(|_| lo + (hi - lo) * self.next_f64()).collect()
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Median wall time (s) of `f` over `repeats` runs, after one untimed warm-up run.
+fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
+    f();
+    median(
+        (0..repeats)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}
+
+/// The CPU model from /proc/cpuinfo ("model name"), or the architecture elsewhere.
+fn cpu_model() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
+
+/// One thread count's results.
+struct Run {
+    threads: usize,
+    mueller_s: f64,
+    brdf_dolp_s: f64,
+    mueller_sum: f64,
+    brdf_sum: f64,
+    dolp_sum: f64,
+}
+
+fn run_with(
+    threads: usize,
+    repeats: usize,
+    material: &polbrdf::Material,
+    batch: &GeometryBatch<'_>,
+) -> Result<Run, CliError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::Invalid(format!("--threads = {threads}: {e}")))?;
+    let n = batch.len();
+    let mut out = vec![[0.0; 16]; n];
+    let (mut brdf, mut dolp) = (vec![0.0; n], vec![0.0; n]);
+    let mueller_s = pool.install(|| {
+        median_seconds(repeats, || {
+            batch::mueller_into(material, batch, &mut out).expect("lengths match");
+            black_box(&mut out);
+        })
+    });
+    let brdf_dolp_s = pool.install(|| {
+        median_seconds(repeats, || {
+            batch::brdf_dolp_into(material, batch, &mut brdf, &mut dolp).expect("lengths match");
+            black_box((&mut brdf, &mut dolp));
+        })
+    });
+    Ok(Run {
+        threads,
+        mueller_s,
+        brdf_dolp_s,
+        mueller_sum: out.iter().flatten().sum(),
+        brdf_sum: brdf.iter().sum(),
+        dolp_sum: dolp.iter().sum(),
+    })
+}
+
+/// Median latency (ns) of one call of `f` on the first geometries of the batch.
+fn latency_ns<T>(batch: &GeometryBatch<'_>, f: impl Fn(&Geometry) -> T) -> f64 {
+    let geoms: Vec<Geometry> = (0..batch.len().min(1024)).map(|i| batch.get(i)).collect();
+    const CALLS: usize = 20_000;
+    let mut samples = Vec::with_capacity(31);
+    for _ in 0..31 {
+        let t = Instant::now();
+        for k in 0..CALLS {
+            black_box(f(black_box(&geoms[k % geoms.len()])));
+        }
+        samples.push(t.elapsed().as_secs_f64() * 1e9 / CALLS as f64);
+    }
+    median(samples)
+}
+
+/// Runs `polbrdf bench`.
+pub fn run(args: &Args) -> Result<(), CliError> {
+    if args.count == 0 {
+        return Err(CliError::Invalid("--count must be at least 1".into()));
+    }
+    if args.repeats < 5 {
+        return Err(CliError::Invalid(format!(
+            "--repeats = {}: at least 5 repeats are needed for a meaningful median",
+            args.repeats
+        )));
+    }
+    let all = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = args.threads.unwrap_or(all);
+    if threads == 0 {
+        return Err(CliError::Invalid("--threads must be at least 1".into()));
+    }
+    let material = polbrdf::preset("paint")
+        .and_then(|s| s.build())
+        .map_err(CliError::Model)?;
+    let n = args.count;
+    let mut rng = Rng(2024);
+    let ti = rng.uniform(0.0, 89.9f64.to_radians(), n);
+    let pi = rng.uniform(0.0, 360f64.to_radians(), n);
+    let tr = rng.uniform(0.0, 89.9f64.to_radians(), n);
+    let pr = rng.uniform(0.0, 360f64.to_radians(), n);
+    let batch = GeometryBatch::new(&ti, &pi, &tr, &pr).map_err(CliError::Model)?;
+
+    let mut counts = vec![1];
+    if threads != 1 {
+        counts.push(threads);
+    }
+    let runs = counts
+        .iter()
+        .map(|&t| run_with(t, args.repeats, &material, &batch))
+        .collect::<Result<Vec<_>, _>>()?;
+    let kernel = Kernel::new(&material);
+    let latency_kernel = latency_ns(&batch, |g| kernel.pbrdf(g));
+    let latency_reference = latency_ns(&batch, |g| material.evaluate(g));
+    let cpu = cpu_model();
+    let simd = kernel.level().name();
+    // The results do not depend on the thread count: one checksum for all runs.
+    let consistent = runs.iter().all(|r| {
+        r.mueller_sum.to_bits() == runs[0].mueller_sum.to_bits()
+            && r.brdf_sum.to_bits() == runs[0].brdf_sum.to_bits()
+    });
+    let per_s = |s: f64| n as f64 / s;
+
+    if args.json {
+        let results: Vec<_> = runs
+            .iter()
+            .map(|r| {
+                json!({
+                    "threads": r.threads,
+                    "mueller_evals_per_s": per_s(r.mueller_s),
+                    "brdf_dolp_evals_per_s": per_s(r.brdf_dolp_s),
+                    "mueller_seconds": r.mueller_s,
+                    "brdf_dolp_seconds": r.brdf_dolp_s,
+                })
+            })
+            .collect();
+        let doc = json!({
+            "material": "paint",
+            "count": n,
+            "repeats": args.repeats,
+            "statistic": "median",
+            "cpu": {"model": cpu, "logical_cpus": all, "simd": simd},
+            "results": results,
+            "single_eval_ns": {
+                "kernel": latency_kernel,
+                "reference": latency_reference,
+            },
+            "checksum": {
+                "brdf_sum": runs[0].brdf_sum,
+                "dolp_sum": runs[0].dolp_sum,
+                "mueller_sum": runs[0].mueller_sum,
+                "same_for_all_thread_counts": consistent,
+            },
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).expect("serializable")
+        );
+    } else {
+        println!(
+            "polbrdf bench: {n} random valid geometries of `paint` through the batch API, \
+             medians of {} repeats",
+            args.repeats
+        );
+        println!("CPU: {cpu} ({all} logical CPUs); kernel SIMD level: {simd}");
+        println!();
+        println!(
+            "{:<10} {:>22} {:>22}",
+            "threads", "full Mueller", "BRDF + DoLP"
+        );
+        for r in &runs {
+            println!(
+                "{:<10} {:>15.2} M/s   {:>15.2} M/s",
+                r.threads,
+                per_s(r.mueller_s) / 1e6,
+                per_s(r.brdf_dolp_s) / 1e6
+            );
+        }
+        println!();
+        println!(
+            "single evaluation: {latency_kernel:.1} ns (kernel, Kernel::pbrdf), \
+             {latency_reference:.1} ns (reference path, Material::evaluate)"
+        );
+        println!(
+            "checksum: Σ brdf = {:.12e}, Σ dolp = {:.12e}, Σ F = {:.12e}{}",
+            runs[0].brdf_sum,
+            runs[0].dolp_sum,
+            runs[0].mueller_sum,
+            if consistent {
+                " (identical for every thread count)"
+            } else {
+                " (DIFFERS between thread counts)"
+            }
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,47 @@
+//! `polbrdf bench`: runs, reports what it promises, refuses bad options.
+
+use crate::common::{polbrdf, stderr};
+
+#[test]
+fn bench_reports_rates_latency_checksum_and_cpu_as_json() {
+    let out = polbrdf(&[
+        "bench",
+        "--count",
+        "3000",
+        "--threads",
+        "2",
+        "--repeats",
+        "5",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON on stdout");
+    assert_eq!(doc["count"], 3000);
+    assert_eq!(doc["material"], "paint");
+    let results = doc["results"].as_array().unwrap();
+    assert_eq!(results.len(), 2, "one thread and two threads");
+    for r in results {
+        for key in ["mueller_evals_per_s", "brdf_dolp_evals_per_s"] {
+            assert!(r[key].as_f64().unwrap() > 0.0, "{key}");
+        }
+    }
+    assert!(doc["single_eval_ns"]["kernel"].as_f64().unwrap() > 0.0);
+    assert!(doc["single_eval_ns"]["reference"].as_f64().unwrap() > 0.0);
+    assert!(doc["cpu"]["model"].as_str().is_some_and(|s| !s.is_empty()));
+    assert!(doc["cpu"]["simd"].as_str().is_some());
+    let checksum = &doc["checksum"];
+    assert_eq!(checksum["same_for_all_thread_counts"], true);
+    assert!(checksum["brdf_sum"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn bench_refuses_too_few_repeats_and_zero_counts() {
+    for args in [
+        &["bench", "--count", "100", "--repeats", "3"][..],
+        &["bench", "--count", "0"],
+        &["bench", "--count", "100", "--threads", "0"],
+    ] {
+        let out = polbrdf(args);
+        assert_eq!(out.status.code(), Some(3), "{args:?}: {}", stderr(&out));
+    }
+}

@@ -1,0 +1,176 @@
+//! Benchmarks of the model's kernels, per element, on 4096 random valid geometries of the
+//! `paint` preset (θ uniform in [0°, 89.9°], φ in [0°, 360°)), one thread. Run with
+//! `cargo bench -p polbrdf --bench kernels`; divan reports medians and items per second.
+//!
+//! - `reference_*`: the straightforward scalar path (`Geometry::angle_variables`, the Fresnel
+//!   amplitudes with the Jones and Mueller matrices, `Material::evaluate`);
+//! - `kernel_*`: the vectorized batch kernel (`polbrdf::kernel`), at each SIMD level this CPU
+//!   supports (an unsupported level measures nothing);
+//! - `single_*`: the latency of one evaluation.
+
+use divan::counter::ItemsCount;
+use divan::{black_box, Bencher};
+use polbrdf::kernel::{Kernel, SimdLevel};
+use polbrdf::{AngleVariables, Geometry, GeometryBatch, Jones, Material, Mueller};
+
+fn main() {
+    divan::main();
+}
+
+const N: usize = 4096;
+const LEVELS: [&str; 3] = ["portable", "avx2+fma", "avx512"];
+
+struct Data {
+    material: Material,
+    cols: [Vec<f64>; 4],
+    geometries: Vec<Geometry>,
+}
+
+fn data() -> Data {
+    let mut state = 2024u64;
+    let mut next = move || {
+        // SplitMix64, uniform in [0, 1)
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let theta = 89.9f64.to_radians();
+    let phi = 360f64.to_radians();
+    let geometries: Vec<Geometry> = (0..N)
+        .map(|_| Geometry::new(next() * theta, next() * phi, next() * theta, next() * phi).unwrap())
+        .collect();
+    let cols = [
+        geometries.iter().map(|g| g.theta_i()).collect(),
+        geometries.iter().map(|g| g.phi_i()).collect(),
+        geometries.iter().map(|g| g.theta_r()).collect(),
+        geometries.iter().map(|g| g.phi_r()).collect(),
+    ];
+    Data {
+        material: polbrdf::preset("paint").unwrap().build().unwrap(),
+        cols,
+        geometries,
+    }
+}
+
+fn level(name: &str) -> Option<SimdLevel> {
+    let level = match name {
+        "avx512" => SimdLevel::Avx512,
+        "avx2+fma" => SimdLevel::Avx2,
+        _ => SimdLevel::Portable,
+    };
+    level.is_supported().then_some(level)
+}
+
+/// Angle variables (θN, β, ΦN, η_i, η_r) in closed form.
+#[divan::bench]
+fn reference_geometry(bencher: Bencher) {
+    let d = data();
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        for g in &d.geometries {
+            black_box(black_box(g).angle_variables());
+        }
+    });
+}
+
+/// Fresnel amplitudes, the Jones matrix of eq. 11 and its Mueller matrix, alone.
+#[divan::bench]
+fn reference_fresnel_mueller(bencher: Bencher) {
+    let d = data();
+    let index = d.material.index();
+    let vars: Vec<AngleVariables> = d
+        .geometries
+        .iter()
+        .map(|g| g.angle_variables().unwrap())
+        .collect();
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        for v in &vars {
+            let v = black_box(v);
+            let fr = index.amplitudes(v.beta);
+            black_box(Mueller::from_jones(&Jones::microfacet(
+                &fr, v.eta_i, v.eta_r,
+            )));
+        }
+    });
+}
+
+/// The full pBRDF through the reference path, `Material::evaluate`.
+#[divan::bench]
+fn reference_pbrdf(bencher: Bencher) {
+    let d = data();
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        for g in &d.geometries {
+            black_box(d.material.evaluate(black_box(g)));
+        }
+    });
+}
+
+/// The full pBRDF (16 entries) through the kernel, one thread.
+#[divan::bench(args = LEVELS)]
+fn kernel_mueller(bencher: Bencher, name: &str) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let [ti, pi, tr, pr] = &d.cols;
+    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
+    let k = Kernel::with_level(&d.material, level).unwrap();
+    let mut out = vec![[0.0; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.mueller_into(black_box(&batch), 0, &mut out);
+        black_box(&mut out);
+    });
+}
+
+/// BRDF and DoLP only through the kernel, one thread.
+#[divan::bench(args = LEVELS)]
+fn kernel_brdf_dolp(bencher: Bencher, name: &str) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let [ti, pi, tr, pr] = &d.cols;
+    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
+    let k = Kernel::with_level(&d.material, level).unwrap();
+    let (mut b, mut p) = (vec![0.0; N], vec![0.0; N]);
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.brdf_dolp_into(black_box(&batch), 0, &mut b, &mut p);
+        black_box((&mut b, &mut p));
+    });
+}
+
+/// BRDF, DoLP and AoLP through the kernel, one thread.
+#[divan::bench(args = LEVELS)]
+fn kernel_brdf_dolp_aolp(bencher: Bencher, name: &str) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let [ti, pi, tr, pr] = &d.cols;
+    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
+    let k = Kernel::with_level(&d.material, level).unwrap();
+    let (mut b, mut p, mut a) = (vec![0.0; N], vec![0.0; N], vec![0.0; N]);
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.brdf_dolp_aolp_into(black_box(&batch), 0, &mut b, &mut p, &mut a);
+        black_box((&mut b, &mut p, &mut a));
+    });
+}
+
+/// Latency of one evaluation through the kernel's single-geometry entry point.
+#[divan::bench]
+fn single_kernel_pbrdf(bencher: Bencher) {
+    let d = data();
+    let k = Kernel::new(&d.material);
+    let mut i = 0;
+    bencher.bench_local(|| {
+        i = (i + 1) % N;
+        black_box(k.pbrdf(black_box(&d.geometries[i])))
+    });
+}
+
+/// Latency of one evaluation through the reference path, `Material::evaluate`.
+#[divan::bench]
+fn single_reference_evaluate(bencher: Bencher) {
+    let d = data();
+    let mut i = 0;
+    bencher.bench_local(|| {
+        i = (i + 1) % N;
+        black_box(d.material.evaluate(black_box(&d.geometries[i])))
+    });
+}
