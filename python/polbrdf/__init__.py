@@ -33,6 +33,7 @@ the first call to change it.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -40,7 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 try:
     from . import _polbrdf
-    from ._polbrdf import Material
+    from ._polbrdf import FitResult, Material
 except ImportError as _e:  # pragma: no cover - only when the extension was never built
     raise ImportError(
         "polbrdf's compiled extension (polbrdf._polbrdf) is missing. Install the package with "
@@ -50,11 +51,13 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
 
 __all__ = [
     "Evaluation",
+    "FitResult",
     "Material",
     "__version__",
     "brdf",
     "dolp",
     "evaluate",
+    "fit",
     "mueller",
     "stokes_aolp",
     "stokes_dolp",
@@ -298,3 +301,64 @@ def stokes_aolp(s: ArrayLike, degrees: bool = True) -> NDArray[np.float64]:
     if degrees:
         out = np.degrees(out)
     return out[()] if out.ndim == 0 else out
+
+
+def fit(
+    material: Material,
+    theta_i: ArrayLike,
+    phi_i: ArrayLike,
+    theta_r: ArrayLike,
+    phi_r: ArrayLike,
+    data: Mapping[str, ArrayLike],
+    free: str | Sequence[str],
+    *,
+    sigma: Mapping[str, ArrayLike] | None = None,
+    degrees: bool = True,
+    starts: int = 2,
+    seed: int = 1,
+) -> FitResult:
+    """Fit material parameters to measurements (Levenberg–Marquardt), with uncertainties.
+
+    ``material`` gives the start values and every parameter that stays fixed. ``data`` maps a
+    measured quantity — ``"brdf"`` (sr⁻¹), ``"dolp"``, or a pBRDF entry ``"m00"`` … ``"m33"``
+    (sr⁻¹, psps basis) — to its values; the angles and every data and ``sigma`` array broadcast
+    together. NaN means "not measured here". ``sigma`` maps a quantity to its 1-σ uncertainties
+    (> 0 where measured); a quantity without one weighs 1, and the uncertainties are then
+    estimated from the scatter of the residuals (covariance × χ²/dof). ``free`` names the
+    parameters to fit: any of ``n, k, a, b`` or ``sigma_deg``, ``rho_d, rho_v, tau_deg,
+    omega_deg``. ``starts`` extra starts are scattered around the start values; the best χ² wins.
+
+    The same engine as ``polbrdf fit`` (docs/model.md §7a). Raises ``ValueError`` when the data
+    cannot determine a parameter, when there are no more values than free parameters, or for
+    invalid input.
+    """
+    if isinstance(free, str):
+        free = [f for f in free.split(",") if f.strip()]
+    sigma = dict(sigma or {})
+    unknown = set(sigma) - set(data)
+    if unknown:
+        raise ValueError(f"sigma given for {sorted(unknown)} but no such data")
+    names = list(data)
+    arrays = [np.asarray(data[k], dtype=np.float64) for k in names]
+    sig_names = [k for k in names if k in sigma]
+    sig_arrays = [np.asarray(sigma[k], dtype=np.float64) for k in sig_names]
+    shape, flat = _flatten(material, (theta_i, phi_i, theta_r, phi_r))
+    try:
+        b = np.broadcast_arrays(np.empty(shape), *arrays, *sig_arrays)
+    except ValueError as e:
+        raise ValueError("angle, data and sigma arrays do not broadcast together") from e
+    full = b[0].shape
+    if full != shape:
+        flat = tuple(  # type: ignore[assignment]
+            np.ascontiguousarray(np.broadcast_to(np.asarray(a), full), dtype=np.float64).reshape(-1)
+            for a in (theta_i, phi_i, theta_r, phi_r)
+        )
+    vals = [np.ascontiguousarray(a, dtype=np.float64).reshape(-1) for a in b[1 : 1 + len(names)]]
+    sigs_by_name = {
+        k: np.ascontiguousarray(a, dtype=np.float64).reshape(-1)
+        for k, a in zip(sig_names, b[1 + len(names) :])
+    }
+    sigs = [sigs_by_name.get(k) for k in names]
+    return _polbrdf.fit_flat(
+        material, *flat, names, vals, sigs, list(free), degrees, int(starts), int(seed)
+    )

@@ -136,3 +136,71 @@ def evaluate_flat(
     NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None
 ]:
     """BRDF, DoLP, AoLP (and the (n, 16) pBRDF) at n geometries."""
+
+class FitResult:
+    """The outcome of :func:`polbrdf.fit`: fitted parameters with their uncertainties."""
+
+    @property
+    def names(self) -> list[str]:
+        """Free parameters, in the order of every array."""
+    @property
+    def values(self) -> NDArray[np.float64]:
+        """Fitted values (units of the material keys: degrees for sigma_deg, sr⁻¹ for ρ, a)."""
+    @property
+    def stderr(self) -> NDArray[np.float64]:
+        """Standard errors, sqrt(diag(covariance))."""
+    @property
+    def covariance(self) -> NDArray[np.float64]:
+        """Covariance matrix, shape (p, p)."""
+    @property
+    def correlation(self) -> NDArray[np.float64]:
+        """Correlation matrix, shape (p, p)."""
+    @property
+    def parameters(self) -> dict[str, tuple[float, float]]:
+        """{name: (value, stderr)}."""
+    @property
+    def chi2(self) -> float:
+        """χ² = Σ ((model − data)/σ)², σ = 1 where none was given."""
+    @property
+    def reduced_chi2(self) -> float:
+        """χ²/dof."""
+    @property
+    def dof(self) -> int:
+        """Measured values − free parameters."""
+    @property
+    def uncertainty_from_residuals(self) -> bool:
+        """True when some value had no σ: covariance scaled by χ²/dof."""
+    @property
+    def converged(self) -> bool:
+        """Whether the minimizer met a convergence test."""
+    @property
+    def iterations(self) -> int:
+        """Minimizer steps of the best start."""
+    @property
+    def message(self) -> str:
+        """How the minimizer stopped."""
+    @property
+    def starts(self) -> tuple[int, int]:
+        """(starts tried, starts that reached the best χ²)."""
+    @property
+    def material(self) -> Material:
+        """The fitted material."""
+    @property
+    def residuals(self) -> NDArray[np.float64]:
+        """Normalized residuals (model − data)/σ, one per measured value."""
+
+def fit_flat(
+    material: Material,
+    theta_i: NDArray[np.float64],
+    phi_i: NDArray[np.float64],
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    names: list[str],
+    values: list[NDArray[np.float64]],
+    sigmas: list[NDArray[np.float64] | None],
+    free: list[str],
+    degrees: bool,
+    starts: int,
+    seed: int,
+) -> FitResult:
+    """Fit at n geometries; values NaN where not measured."""

@@ -615,6 +615,250 @@ fn evaluate_flat<'py>(
     Ok((brdf, dolp, aolp, mueller))
 }
 
+// ---------------------------------------------------------------------------------------------
+// Fitting
+
+/// The outcome of [`fit_flat`]: the fitted parameters with their uncertainties.
+#[pyclass(name = "FitResult", module = "polbrdf", frozen)]
+struct PyFitResult {
+    result: polbrdf_fit::FitResult,
+    material: Material,
+}
+
+#[pymethods]
+impl PyFitResult {
+    /// Names of the free parameters, in the order of every array below.
+    #[getter]
+    fn names(&self) -> Vec<&'static str> {
+        self.result.params.iter().map(|p| p.name()).collect()
+    }
+    /// Fitted values (units of the material keys: degrees for `sigma_deg`, sr⁻¹ for ρ, …).
+    #[getter]
+    fn values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.result.values)
+    }
+    /// Standard errors, `sqrt(diag(covariance))`.
+    #[getter]
+    fn stderr<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.result.stderr)
+    }
+    /// Covariance matrix, shape `(p, p)`.
+    #[getter]
+    fn covariance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        Ok(PyArray2::from_vec2(py, &self.result.covariance)?)
+    }
+    /// Correlation matrix, shape `(p, p)`.
+    #[getter]
+    fn correlation<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        Ok(PyArray2::from_vec2(py, &self.result.correlation)?)
+    }
+    /// `{name: (value, stderr)}`.
+    #[getter]
+    fn parameters<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (k, p) in self.result.params.iter().enumerate() {
+            d.set_item(p.name(), (self.result.values[k], self.result.stderr[k]))?;
+        }
+        Ok(d)
+    }
+    /// χ² = Σ ((model − data)/σ)², σ = 1 where none was given.
+    #[getter]
+    fn chi2(&self) -> f64 {
+        self.result.chi2
+    }
+    /// χ²/dof.
+    #[getter]
+    fn reduced_chi2(&self) -> f64 {
+        self.result.reduced_chi2
+    }
+    /// Degrees of freedom: measured values − free parameters.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.result.dof
+    }
+    /// True when some value had no σ: the covariance is scaled by χ²/dof.
+    #[getter]
+    fn uncertainty_from_residuals(&self) -> bool {
+        self.result.scaled_by_residuals
+    }
+    /// Whether the minimizer met a convergence test.
+    #[getter]
+    fn converged(&self) -> bool {
+        self.result.converged
+    }
+    /// Minimizer steps of the best start.
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.result.iterations
+    }
+    /// How the minimizer stopped.
+    #[getter]
+    fn message(&self) -> &str {
+        &self.result.message
+    }
+    /// `(starts tried, starts that reached the best χ²)`.
+    #[getter]
+    fn starts(&self) -> (usize, usize) {
+        self.result.starts
+    }
+    /// The fitted material.
+    #[getter]
+    fn material(&self) -> PyMaterial {
+        PyMaterial {
+            inner: self.material.clone(),
+        }
+    }
+    /// Normalized residuals `(model − data)/σ`, one per measured value (in the order of the
+    /// flattened data, quantity by quantity).
+    #[getter]
+    fn residuals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let r: Vec<f64> = self
+            .result
+            .residuals
+            .iter()
+            .map(|r| (r.model - r.data) / r.sigma)
+            .collect();
+        PyArray1::from_vec(py, r)
+    }
+    fn __repr__(&self) -> String {
+        let params: Vec<String> = self
+            .result
+            .params
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                format!(
+                    "{}={} ± {:.3e}",
+                    p.name(),
+                    py_float(self.result.values[k]),
+                    self.result.stderr[k]
+                )
+            })
+            .collect();
+        format!(
+            "FitResult({}; chi2/dof={:.4}, dof={}, converged={})",
+            params.join(", "),
+            self.result.reduced_chi2,
+            self.result.dof,
+            if self.result.converged {
+                "True"
+            } else {
+                "False"
+            }
+        )
+    }
+}
+
+/// Fits the `free` parameters of `material` to measured quantities at `n` geometries.
+/// `names[k]` is `brdf`, `dolp` or `m00` … `m33`; `values[k]` has length `n` with NaN where not
+/// measured; `sigmas[k]` (1-σ, > 0 where measured) or `None` for equal weights.
+#[pyfunction]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, names, values, sigmas, free, degrees, starts, seed))]
+#[allow(clippy::too_many_arguments)]
+fn fit_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_i: PyReadonlyArray1<'py, f64>,
+    phi_i: PyReadonlyArray1<'py, f64>,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    names: Vec<String>,
+    values: Vec<PyReadonlyArray1<'py, f64>>,
+    sigmas: Vec<Option<PyReadonlyArray1<'py, f64>>>,
+    free: Vec<String>,
+    degrees: bool,
+    starts: usize,
+    seed: u64,
+) -> PyResult<PyFitResult> {
+    use polbrdf_fit::{Measurement, Observable, Param};
+    let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
+    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let fit_err = |e: polbrdf_fit::FitError| PyValueError::new_err(e.to_string());
+    let free: Vec<Param> = Param::parse_list(&free.join(",")).map_err(fit_err)?;
+    let mut geometries = Vec::with_capacity(n);
+    for i in 0..n {
+        let [a, b, c, d] = input.map(|s| s[i]);
+        let g = if degrees {
+            polbrdf::Geometry::from_degrees(a, b, c, d)
+        } else {
+            polbrdf::Geometry::new(a, b, c, d)
+        };
+        let g = g.map_err(|e| match e {
+            polbrdf::Error::InvalidAngle {
+                name,
+                value,
+                reason,
+                ..
+            } => polbrdf::Error::InvalidAngle {
+                name: name.trim_end_matches("_deg"),
+                value,
+                index: Some(i),
+                reason,
+            },
+            other => other,
+        });
+        geometries.push(g.map_err(|e| core_err(py, &e))?);
+    }
+    let mut data = Vec::new();
+    for ((name, v), s) in names.iter().zip(&values).zip(&sigmas) {
+        let observable = Observable::parse(name).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "unknown measured quantity `{name}` (expected brdf, dolp or m00 … m33)"
+            ))
+        })?;
+        let v = v
+            .as_slice()
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let s = match s {
+            Some(s) => Some(
+                s.as_slice()
+                    .map_err(|e| PyValueError::new_err(e.to_string()))?,
+            ),
+            None => None,
+        };
+        if v.len() != n || s.is_some_and(|s| s.len() != n) {
+            return Err(PyValueError::new_err(format!(
+                "`{name}` does not have one value per geometry"
+            )));
+        }
+        for i in 0..n {
+            if v[i].is_nan() {
+                continue; // not measured
+            }
+            if !v[i].is_finite() {
+                return Err(PyValueError::new_err(format!(
+                    "`{name}` = {} at index {i}: a measured value must be finite (NaN = not measured)",
+                    v[i]
+                )));
+            }
+            let sigma = match s.map(|s| s[i]) {
+                Some(x) if x.is_finite() && x > 0.0 => Some(x),
+                Some(x) => return Err(PyValueError::new_err(format!(
+                    "sigma of `{name}` = {x} at index {i}: an uncertainty must be finite and > 0"
+                ))),
+                None => None,
+            };
+            data.push(Measurement {
+                geometry: geometries[i],
+                observable,
+                value: v[i],
+                sigma,
+            });
+        }
+    }
+    let opts = polbrdf_fit::FitOptions {
+        extra_starts: starts,
+        seed,
+        ..polbrdf_fit::FitOptions::default()
+    };
+    let spec = material.inner.spec().clone();
+    let result = py
+        .detach(|| polbrdf_fit::fit(&spec, &free, &data, &opts))
+        .map_err(fit_err)?;
+    let material = result.spec.build().map_err(|e| core_err(py, &e))?;
+    Ok(PyFitResult { result, material })
+}
+
 /// The compiled part of the `polbrdf` package (import `polbrdf`, not this module).
 #[pymodule]
 fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -622,5 +866,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(mueller_flat, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
+    m.add_class::<PyFitResult>()?;
+    m.add_function(wrap_pyfunction!(fit_flat, m)?)?;
     Ok(())
 }
