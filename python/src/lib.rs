@@ -833,9 +833,11 @@ fn fit_flat<'py>(
             }
             let sigma = match s.map(|s| s[i]) {
                 Some(x) if x.is_finite() && x > 0.0 => Some(x),
-                Some(x) => return Err(PyValueError::new_err(format!(
+                Some(x) => {
+                    return Err(PyValueError::new_err(format!(
                     "sigma of `{name}` = {x} at index {i}: an uncertainty must be finite and > 0"
-                ))),
+                )))
+                }
                 None => None,
             };
             data.push(Measurement {
