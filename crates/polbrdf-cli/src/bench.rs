@@ -29,24 +29,6 @@ pub struct Args {
     pub json: bool,
 }
 
-/// SplitMix64: a small deterministic generator, uniform in [0, 1). The same stream (seed 2024)
-/// as `python/examples/bench_batch.rs`, so the two benchmarks time the same inputs.
-struct Rng(u64);
-
-impl Rng {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn uniform(&mut self, lo: f64, hi: f64, n: usize) -> Vec<f64> {
-        (0..n).map(|_| lo + (hi - lo) * self.next_f64()).collect()
-    }
-}
-
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     let n = v.len();
@@ -164,7 +146,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .and_then(|s| s.build())
         .map_err(CliError::Model)?;
     let n = args.count;
-    let mut rng = Rng(2024);
+    // Seed 2024: the same stream in `polbrdf bench` and python/examples/bench_batch.rs.
+    let mut rng = polbrdf::sample::SplitMix64::new(2024);
     let ti = rng.uniform(0.0, 89.9f64.to_radians(), n);
     let pi = rng.uniform(0.0, 360f64.to_radians(), n);
     let tr = rng.uniform(0.0, 89.9f64.to_radians(), n);

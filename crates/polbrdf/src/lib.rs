@@ -38,6 +38,7 @@ pub mod model;
 pub mod mueller;
 pub mod presets;
 pub mod quadrature;
+pub mod sample;
 pub mod shadowing;
 
 pub use albedo::{directional_hemispherical, Albedo};

@@ -13,30 +13,14 @@ use std::f64::consts::{FRAC_PI_2, PI};
 
 const TOL: f64 = 1e-12;
 
-/// SplitMix64, uniform in [0, 1).
-struct Rng(u64);
+use polbrdf::sample::SplitMix64 as Rng;
 
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        ((self.next() * n as f64) as usize).min(n - 1)
-    }
-    fn sign(&mut self) -> f64 {
-        if self.next() < 0.5 {
-            -1.0
-        } else {
-            1.0
-        }
+/// ±1 with equal probability.
+fn sign(rng: &mut Rng) -> f64 {
+    if rng.next_f64() < 0.5 {
+        -1.0
+    } else {
+        1.0
     }
 }
 
@@ -205,7 +189,7 @@ fn check_aolp(what: &str, got: f64, e: &polbrdf::Evaluation) {
 fn mueller_of_a_rotated_diagonal_jones_matrix_is_r_md_r() {
     // The identity the kernel is built on:
     // Mueller(Rot(η_r)·diag(rs, rp)·Rot(−η_i)) = R(η_r)·M_d·R(−η_i).
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     for _ in 0..2000 {
         let index = RefractiveIndex::new(rng.range(0.05, 4.0), rng.range(0.0, 6.0)).unwrap();
         let fr: Fresnel = index.amplitudes(rng.range(0.0, FRAC_PI_2));
@@ -273,27 +257,27 @@ fn random_material(rng: &mut Rng) -> MaterialSpec {
     };
     let mut spec = MaterialSpec::new(n, rng.range(1.0, 60.0));
     spec.k = k;
-    if rng.next() < 0.3 {
+    if rng.next_f64() < 0.3 {
         spec.sigma_deg = None;
         spec.b = Some(10f64.powf(rng.range(-1.0, 3.5)));
         spec.a = Some(rng.range(0.0, 3.0));
     }
-    spec.form = if rng.next() < 0.3 {
+    spec.form = if rng.next_f64() < 0.3 {
         Form::Paper
     } else {
         Form::Standard
     };
-    spec.shadowing = rng.next() < 0.75;
-    spec.azimuth_term = if rng.next() < 0.3 {
+    spec.shadowing = rng.next_f64() < 0.75;
+    spec.azimuth_term = if rng.next_f64() < 0.3 {
         AzimuthTerm::Eq3
     } else {
         AzimuthTerm::None
     };
     spec.tau_deg = rng.range(2.0, 60.0);
     spec.omega_deg = rng.range(5.0, 80.0);
-    if rng.next() < 0.6 {
+    if rng.next_f64() < 0.6 {
         spec.rho_d = rng.range(0.0, 0.1);
-        spec.rho_v = if rng.next() < 0.7 {
+        spec.rho_v = if rng.next_f64() < 0.7 {
             rng.range(0.0, 0.05)
         } else {
             0.0
@@ -307,7 +291,7 @@ fn random_geometry(rng: &mut Rng) -> [f64; 4] {
     let max = 89.999f64.to_radians();
     let theta = |rng: &mut Rng| rng.range(0.0, max);
     let phi = |rng: &mut Rng| rng.range(-2.0 * PI, 4.0 * PI);
-    let tiny = |rng: &mut Rng| rng.sign() * 10f64.powf(rng.range(-14.0, -2.0));
+    let tiny = |rng: &mut Rng| sign(rng) * 10f64.powf(rng.range(-14.0, -2.0));
     match rng.below(12) {
         0..=4 => [theta(rng), phi(rng), theta(rng), phi(rng)],
         5 => {
@@ -323,7 +307,7 @@ fn random_geometry(rng: &mut Rng) -> [f64; 4] {
         7 => {
             // near specular or near backscatter
             let (t, p) = (theta(rng), phi(rng));
-            let dp = if rng.next() < 0.5 { PI } else { 0.0 };
+            let dp = if rng.next_f64() < 0.5 { PI } else { 0.0 };
             let tr = (t + tiny(rng)).clamp(0.0, max);
             [t, p, tr, p + dp + tiny(rng)]
         }
@@ -344,7 +328,7 @@ fn random_geometry(rng: &mut Rng) -> [f64; 4] {
         10 => {
             // at or below the horizon
             let below = rng.range(FRAC_PI_2, PI);
-            if rng.next() < 0.5 {
+            if rng.next_f64() < 0.5 {
                 [below, phi(rng), theta(rng), phi(rng)]
             } else {
                 [theta(rng), phi(rng), FRAC_PI_2, phi(rng)]
@@ -352,7 +336,7 @@ fn random_geometry(rng: &mut Rng) -> [f64; 4] {
         }
         _ => {
             // large azimuths (many turns; rarely beyond the kernel's reduction range)
-            let big = if rng.next() < 0.1 { 1e6 } else { 1e3 };
+            let big = if rng.next_f64() < 0.1 { 1e6 } else { 1e3 };
             [
                 theta(rng),
                 rng.range(-big, big),
@@ -365,7 +349,7 @@ fn random_geometry(rng: &mut Rng) -> [f64; 4] {
 
 #[test]
 fn random_inputs_across_materials_match_the_reference_path() {
-    let mut rng = Rng(20240607);
+    let mut rng = Rng::new(20240607);
     let (materials, per_material) = (400, 300);
     let mut worst = (0.0_f64, 0.0_f64);
     for mi in 0..materials {
@@ -387,7 +371,7 @@ fn random_inputs_across_materials_match_the_reference_path() {
 
 #[test]
 fn presets_on_random_geometries_match_the_reference_path() {
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     for p in polbrdf::presets::all() {
         let m = p.spec.build().unwrap();
         let geoms: Vec<[f64; 4]> = (0..5000).map(|_| random_geometry(&mut rng)).collect();
@@ -399,7 +383,7 @@ fn presets_on_random_geometries_match_the_reference_path() {
 fn hard_materials_match_the_reference_path() {
     // Narrow lobes, an index close to 1 (kernel falls back), n < 1 near its critical angle,
     // tiny τ and Ω, a = 0, tiny a.
-    let mut rng = Rng(5);
+    let mut rng = Rng::new(5);
     let mut specs = vec![];
     for sigma in [0.1, 0.5, 1.0, 2.0] {
         specs.push(MaterialSpec::new(1.5, sigma));
@@ -435,7 +419,7 @@ fn hard_materials_match_the_reference_path() {
 #[test]
 fn extreme_valid_parameters_match_the_reference_path_and_stay_physical() {
     // The bounds of MaterialSpec::build: |N| up to 1e6, a, b, ρ up to 1e100, tiny and huge τ, Ω.
-    let mut rng = Rng(17);
+    let mut rng = Rng::new(17);
     let mut specs = vec![];
     for (n, k) in [
         (1e6, 0.0),
@@ -487,7 +471,7 @@ fn extreme_valid_parameters_match_the_reference_path_and_stay_physical() {
 #[test]
 fn chunk_boundaries_and_partial_blocks() {
     let m = polbrdf::preset("paint").unwrap().build().unwrap();
-    let mut rng = Rng(3);
+    let mut rng = Rng::new(3);
     for n in [0, 1, 2, 7, 31, 32, 33, 63, 65, 4095, 4097, 9000] {
         let geoms: Vec<[f64; 4]> = (0..n).map(|_| random_geometry(&mut rng)).collect();
         check(&format!("n = {n}"), &m, &geoms);
@@ -507,7 +491,7 @@ fn chunk_boundaries_and_partial_blocks() {
 #[test]
 fn batch_results_do_not_depend_on_the_thread_count() {
     let m = polbrdf::preset("gold").unwrap().build().unwrap();
-    let mut rng = Rng(11);
+    let mut rng = Rng::new(11);
     let geoms: Vec<[f64; 4]> = (0..20_000).map(|_| random_geometry(&mut rng)).collect();
     let cols = columns(&geoms);
     let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
