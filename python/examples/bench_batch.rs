@@ -6,7 +6,8 @@
 //! python python/examples/bench.py [N REPEATS]      # the same from Python
 //! ```
 
-use polbrdf::batch::{self, GeometryBatch};
+use polbrdf::batch;
+use polbrdf::GeometryBatch;
 use std::time::Instant;
 
 /// CPU time of the whole process (all threads), seconds: less sensitive than wall time to other

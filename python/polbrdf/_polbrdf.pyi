@@ -148,7 +148,11 @@ class FitResult:
         """Fitted values (units of the material keys: degrees for sigma_deg, sr⁻¹ for ρ, a)."""
     @property
     def stderr(self) -> NDArray[np.float64]:
-        """Standard errors, sqrt(diag(covariance))."""
+        """Standard errors, sqrt(diag(covariance)); NaN for a parameter at its bound."""
+    @property
+    def bounds(self) -> list[dict[str, Any] | None]:
+        """Per parameter: None inside its domain, else {"bound": "lower", "upper_limit_95":
+        float | None, "correlation_at_limit": NDArray | None} (profile-χ² one-sided limit)."""
     @property
     def covariance(self) -> NDArray[np.float64]:
         """Covariance matrix, shape (p, p)."""

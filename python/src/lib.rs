@@ -12,7 +12,9 @@
 //! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
-use polbrdf::batch::{self, GeometryBatch};
+use polbrdf::batch;
+use polbrdf::model::KeyValue;
+use polbrdf::GeometryBatch;
 use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
 use pyo3::exceptions::{
     PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyValueError,
@@ -36,7 +38,7 @@ fn core_err(py: Python<'_>, e: &polbrdf::Error) -> PyErr {
     if let polbrdf::Error::InvalidAngle { name, index, .. } = e {
         let value = err.value(py);
         // Setting attributes on a fresh ValueError cannot fail; ignore it if it ever does.
-        let _ = value.setattr("argument", name.trim_end_matches("_deg"));
+        let _ = value.setattr("argument", python_name(name));
         if let Some(i) = index {
             let _ = value.setattr("index", *i);
         }
@@ -68,6 +70,16 @@ fn os_err(kind: std::io::ErrorKind, msg: String) -> PyErr {
 
 // ---------------------------------------------------------------------------------------------
 // Material
+
+/// The material-file keys (the core's list) in the order of the constructor's keyword
+/// arguments: `name` last.
+fn python_keys() -> impl Iterator<Item = &'static str> {
+    polbrdf::model::KEYS
+        .iter()
+        .copied()
+        .filter(|k| *k != "name")
+        .chain(["name"])
+}
 
 /// A validated material of the simplified Maxwell–Beard model.
 ///
@@ -242,19 +254,14 @@ impl PyMaterial {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.inner.spec();
         let d = PyDict::new(py);
-        d.set_item("n", s.n)?;
-        d.set_item("k", s.k)?;
-        d.set_item("sigma_deg", s.sigma_deg)?;
-        d.set_item("b", s.b)?;
-        d.set_item("a", s.a)?;
-        d.set_item("form", s.form.as_str())?;
-        d.set_item("shadowing", s.shadowing)?;
-        d.set_item("tau_deg", s.tau_deg)?;
-        d.set_item("omega_deg", s.omega_deg)?;
-        d.set_item("azimuth_term", s.azimuth_term.as_str())?;
-        d.set_item("rho_d", s.rho_d)?;
-        d.set_item("rho_v", s.rho_v)?;
-        d.set_item("name", s.name.as_deref())?;
+        for key in python_keys() {
+            match s.get(key) {
+                Some(KeyValue::Number(x)) => d.set_item(key, x)?,
+                Some(KeyValue::Text(t)) => d.set_item(key, t)?,
+                Some(KeyValue::Bool(b)) => d.set_item(key, b)?,
+                None => d.set_item(key, py.None())?,
+            }
+        }
         Ok(d)
     }
 
@@ -268,28 +275,20 @@ impl PyMaterial {
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         let s = self.inner.spec();
-        let mut parts = vec![
-            format!("n={}", py_float(s.n)),
-            format!("k={}", py_float(s.k)),
-        ];
-        for (key, v) in [("sigma_deg", s.sigma_deg), ("b", s.b), ("a", s.a)] {
-            if let Some(v) = v {
-                parts.push(format!("{key}={}", py_float(v)));
+        let mut parts = Vec::new();
+        for key in python_keys() {
+            match s.get(key) {
+                Some(KeyValue::Number(x)) => parts.push(format!("{key}={}", py_float(x))),
+                Some(KeyValue::Text(t)) if key == "name" => {
+                    let r = pyo3::types::PyString::new(py, &t).repr()?;
+                    parts.push(format!("{key}={r}"));
+                }
+                Some(KeyValue::Text(t)) => parts.push(format!("{key}='{t}'")),
+                Some(KeyValue::Bool(b)) => {
+                    parts.push(format!("{key}={}", if b { "True" } else { "False" }))
+                }
+                None => {}
             }
-        }
-        parts.push(format!("form='{}'", s.form.as_str()));
-        parts.push(format!(
-            "shadowing={}",
-            if s.shadowing { "True" } else { "False" }
-        ));
-        parts.push(format!("tau_deg={}", py_float(s.tau_deg)));
-        parts.push(format!("omega_deg={}", py_float(s.omega_deg)));
-        parts.push(format!("azimuth_term='{}'", s.azimuth_term.as_str()));
-        parts.push(format!("rho_d={}", py_float(s.rho_d)));
-        parts.push(format!("rho_v={}", py_float(s.rho_v)));
-        if let Some(name) = &s.name {
-            let r = pyo3::types::PyString::new(py, name).repr()?;
-            parts.push(format!("name={r}"));
         }
         Ok(format!("Material({})", parts.join(", ")))
     }
@@ -435,36 +434,50 @@ fn chunk_batch<T>(
         part
     };
     let batch = GeometryBatch::new(rad[0], rad[1], rad[2], rad[3]).map_err(|e| match e {
+        polbrdf::Error::InvalidAngle { index: Some(i), .. } if degrees => {
+            // The element as given, in degrees, as `Geometry::from_degrees` checks it; named
+            // by the Python argument.
+            let [a, b, c, d] = part.map(|s| s[i]);
+            match polbrdf::Geometry::from_degrees(a, b, c, d) {
+                Err(polbrdf::Error::InvalidAngle {
+                    name,
+                    value,
+                    problem,
+                    ..
+                }) => polbrdf::Error::InvalidAngle {
+                    name: python_name(name),
+                    value,
+                    degrees: true,
+                    index: Some(i + start),
+                    problem,
+                },
+                _ => e,
+            }
+        }
         polbrdf::Error::InvalidAngle {
             name,
             value,
+            degrees,
             index,
-            reason,
-        } => {
-            let which = ["theta_i", "phi_i", "theta_r", "phi_r"]
-                .iter()
-                .position(|n| *n == name);
-            let (value, reason) = match (degrees, which, index) {
-                (true, Some(w), Some(i)) => (
-                    part[w][i],
-                    if reason.starts_with("zenith") {
-                        "zenith angle must lie in [0°, 180°]"
-                    } else {
-                        reason
-                    },
-                ),
-                _ => (value, reason),
-            };
-            polbrdf::Error::InvalidAngle {
-                name,
-                value,
-                index: index.map(|i| i + start),
-                reason,
-            }
-        }
+            problem,
+        } => polbrdf::Error::InvalidAngle {
+            name,
+            value,
+            degrees,
+            index: index.map(|i| i + start),
+            problem,
+        },
         other => other,
     })?;
     f(&batch)
+}
+
+/// The Python argument that a core angle name stands for (`theta_i_deg` → `theta_i`).
+fn python_name(core: &'static str) -> &'static str {
+    ["theta_i", "phi_i", "theta_r", "phi_r"]
+        .into_iter()
+        .find(|n| core.strip_suffix("_deg") == Some(n) || core == *n)
+        .unwrap_or(core)
 }
 
 /// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` float64 array, row-major
@@ -637,10 +650,40 @@ impl PyFitResult {
     fn values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.result.values)
     }
-    /// Standard errors, `sqrt(diag(covariance))`.
+    /// Standard errors, `sqrt(diag(covariance))`; NaN for a parameter at its bound (see
+    /// :attr:`bounds`).
     #[getter]
     fn stderr<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.result.stderr)
+    }
+    /// Per parameter: ``None`` when it ended inside its domain, else a dict
+    /// ``{"bound": "lower", "upper_limit_95": float | None, "correlation_at_limit": array | None}``
+    /// — the one-sided 95 % upper limit from the profile of χ² and the parameter's correlations
+    /// at that limit.
+    #[getter]
+    fn bounds<'py>(&self, py: Python<'py>) -> PyResult<Vec<Option<Bound<'py, PyDict>>>> {
+        self.result
+            .bounds
+            .iter()
+            .map(|b| match b {
+                polbrdf_fit::Bound::Interior => Ok(None),
+                polbrdf_fit::Bound::AtLowerBound {
+                    upper_limit_95,
+                    correlation_at_limit,
+                } => {
+                    let d = PyDict::new(py);
+                    d.set_item("bound", "lower")?;
+                    d.set_item("upper_limit_95", *upper_limit_95)?;
+                    d.set_item(
+                        "correlation_at_limit",
+                        correlation_at_limit
+                            .as_ref()
+                            .map(|c| PyArray1::from_slice(py, c)),
+                    )?;
+                    Ok(Some(d))
+                }
+            })
+            .collect()
     }
     /// Covariance matrix, shape `(p, p)`.
     #[getter]
@@ -787,13 +830,15 @@ fn fit_flat<'py>(
             polbrdf::Error::InvalidAngle {
                 name,
                 value,
-                reason,
+                degrees,
+                problem,
                 ..
             } => polbrdf::Error::InvalidAngle {
-                name: name.trim_end_matches("_deg"),
+                name: python_name(name),
                 value,
+                degrees,
                 index: Some(i),
-                reason,
+                problem,
             },
             other => other,
         });

@@ -5,6 +5,7 @@ use crate::error::CliError;
 use crate::map::load;
 use polbrdf::{directional_hemispherical, Albedo};
 use polbrdf_io::csv_io::fmt_f64;
+use polbrdf_io::CsvTable;
 use std::path::PathBuf;
 
 /// `polbrdf albedo`.
@@ -40,40 +41,24 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         )));
     }
     let (material, name) = load(&args.material, "--material")?;
-    // One chunk of angles per core.
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = angles.len().div_ceil(cores).max(1);
-    let rows: Vec<Albedo> = std::thread::scope(|scope| {
-        let handles: Vec<_> = angles
-            .chunks(chunk)
-            .map(|ts| {
-                let m = &material;
-                scope.spawn(move || {
-                    ts.iter()
-                        .map(|t| directional_hemispherical(m, t.to_radians()))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("albedo thread"))
-            .collect()
-    });
+    // Each albedo runs its quadrature nodes through the engine, in parallel.
+    let rows: Vec<Albedo> = angles
+        .iter()
+        .map(|t| directional_hemispherical(&material, t.to_radians()))
+        .collect();
 
     if let Some(path) = &args.output {
-        let mut text = String::from("theta_i_deg,albedo,surface,volume,exceeds_one\n");
-        for (t, a) in angles.iter().zip(&rows) {
-            text += &format!(
-                "{},{},{},{},{}\n",
-                fmt_f64(*t),
+        let mut t = CsvTable::new(["theta_i_deg", "albedo", "surface", "volume", "exceeds_one"]);
+        for (theta, a) in angles.iter().zip(&rows) {
+            t.fields([
+                fmt_f64(*theta),
                 fmt_f64(a.total()),
                 fmt_f64(a.surface),
                 fmt_f64(a.volume),
-                a.total() > 1.0
-            );
+                (a.total() > 1.0).to_string(),
+            ]);
         }
-        polbrdf_io::write_atomic(path, text.as_bytes())?;
+        polbrdf_io::write_atomic(path, &t.into_bytes())?;
     }
 
     let mut out = format!(

@@ -5,9 +5,10 @@
 //! of the results and the CPU it ran on.
 
 use crate::error::CliError;
-use polbrdf::batch::{self, GeometryBatch};
-use polbrdf::kernel::Kernel;
+use polbrdf::batch;
+use polbrdf::engine::Kernel;
 use polbrdf::Geometry;
+use polbrdf::GeometryBatch;
 use serde_json::json;
 use std::hint::black_box;
 use std::time::Instant;

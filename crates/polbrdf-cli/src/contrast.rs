@@ -7,7 +7,7 @@ use crate::map::{
     angle_scale, csv, deg, dolp_scale, light_marks, load, polar_grid, render_all, short, single,
     write_all, Output, ViewArgs, PANEL,
 };
-use polbrdf::contrast::{
+use polbrdf::analysis::contrast::{
     Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
 use polbrdf::Stokes;

@@ -2,7 +2,7 @@
 
 use crate::error::CliError;
 use crate::output::write_output;
-use polbrdf_fit::{fit, FitOptions, FitResult, Measurement, Observable, Param};
+use polbrdf_fit::{fit, Bound, FitOptions, FitResult, Measurement, Observable, Param};
 use serde_json::{json, Map, Value};
 use std::path::Path;
 
@@ -79,10 +79,26 @@ fn matrix(m: &[Vec<f64>]) -> Value {
 fn to_json(r: &FitResult, data: &Path) -> Value {
     let mut params = Map::new();
     for (k, p) in r.params.iter().enumerate() {
-        params.insert(
-            p.name().to_string(),
-            json!({"value": r.values[k], "stderr": r.stderr[k]}),
-        );
+        let entry = match &r.bounds[k] {
+            Bound::Interior => {
+                json!({"value": r.values[k], "stderr": r.stderr[k], "bound": "interior"})
+            }
+            Bound::AtLowerBound {
+                upper_limit_95,
+                correlation_at_limit,
+            } => {
+                let corr: Option<Map<String, Value>> = correlation_at_limit.as_ref().map(|c| {
+                    r.params
+                        .iter()
+                        .zip(c)
+                        .map(|(q, v)| (q.name().to_string(), Value::from(*v)))
+                        .collect()
+                });
+                json!({"value": r.values[k], "stderr": null, "bound": "lower",
+                       "upper_limit_95": upper_limit_95, "correlation_at_limit": corr})
+            }
+        };
+        params.insert(p.name().to_string(), entry);
     }
     let zbs = r.zero_bistatic.as_ref().map(|z| {
         json!({"a": z.a, "stderr_a": z.stderr_a, "b": z.b, "stderr_b": z.stderr_b,
@@ -143,15 +159,57 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
         "  {:<10} {:>16} {:>14} {:>10}\n",
         "parameter", "value", "std. error", "rel."
     );
+    let mut notes = String::new();
     for (k, p) in r.params.iter().enumerate() {
-        s += &format!(
-            "  {:<10} {:>16.8e} {:>14.3e} {:>9.2}%\n",
-            p.name(),
-            r.values[k],
-            r.stderr[k],
-            100.0 * r.stderr[k] / r.values[k].abs().max(f64::MIN_POSITIVE)
-        );
+        match &r.bounds[k] {
+            Bound::Interior => {
+                s += &format!(
+                    "  {:<10} {:>16.8e} {:>14.3e} {:>9.2}%\n",
+                    p.name(),
+                    r.values[k],
+                    r.stderr[k],
+                    100.0 * r.stderr[k] / r.values[k].abs().max(f64::MIN_POSITIVE)
+                );
+            }
+            Bound::AtLowerBound {
+                upper_limit_95,
+                correlation_at_limit,
+            } => {
+                let limit =
+                    upper_limit_95.map_or("unbounded".to_string(), |u| format!("< {u:.3e}"));
+                s += &format!(
+                    "  {:<10} {:>16} {:>14}   (at its lower bound; 95 % upper limit)\n",
+                    p.name(),
+                    format!("{:.1}", r.values[k]),
+                    limit
+                );
+                notes += &format!(
+                    "\n  `{}` ends at its lower bound {}: the data prefer no larger value. The one-sided \
+                     95 % upper limit is where the best χ² over the other parameters rises by 2.706{}.",
+                    p.name(),
+                    r.values[k],
+                    if r.scaled_by_residuals { " × χ²/dof" } else { "" }
+                );
+                if let Some(c) = correlation_at_limit {
+                    let strongest = r
+                        .params
+                        .iter()
+                        .zip(c)
+                        .enumerate()
+                        .filter(|(j, _)| *j != k)
+                        .max_by(|a, b| a.1 .1.abs().total_cmp(&b.1 .1.abs()));
+                    if let Some((_, (q, v))) = strongest {
+                        notes += &format!(
+                            " At that limit it is correlated {v:+.3} with `{}`: what it trades off against.",
+                            q.name()
+                        );
+                    }
+                }
+                notes += "\n";
+            }
+        }
     }
+    s += &notes;
     if r.params.len() > 1 {
         s += "\n  correlation:\n";
         for (k, p) in r.params.iter().enumerate() {

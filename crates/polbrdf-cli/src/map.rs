@@ -3,11 +3,12 @@
 //! options, material loading, polar panels, output directory).
 
 use crate::error::CliError;
-use polbrdf::contrast::{hemisphere, Illumination, ViewGrid, ViewSample};
+use polbrdf::analysis::contrast::{hemisphere, Illumination, ViewGrid, ViewSample};
 use polbrdf::{Material, Stokes};
-use polbrdf_io::csv_io::fmt_f64;
+use polbrdf_io::CsvTable;
 use polbrdf_plot::{
-    ColorScale, Colormap, MarkShape, PolarFigure, PolarGrid, PolarMark, PolarPanel,
+    render_files, ColorScale, Colormap, MarkShape, PolarFigure, PolarGrid, PolarMark, PolarPanel,
+    Render,
 };
 use std::path::{Path, PathBuf};
 
@@ -165,70 +166,29 @@ pub fn single(panel: PolarPanel) -> PolarFigure {
 /// A file to write: name in the output directory and content.
 pub type Output = (String, Vec<u8>);
 
-/// Renders each `(stem, figure)` into `stem.png` and `stem.svg`, spread over the cores, and
-/// appends them to `out` in the given order.
+/// Renders each `(stem, figure)` into `stem.png` and `stem.svg` (in parallel,
+/// `polbrdf_plot::render_files`) and appends them to `out` in the given order.
 pub fn render_all(out: &mut Vec<Output>, figures: &[(&str, PolarFigure)]) -> Result<(), CliError> {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let jobs: Vec<(usize, bool)> = (0..figures.len())
-        .flat_map(|k| [(k, true), (k, false)])
+    let list: Vec<(&str, &dyn Render)> = figures
+        .iter()
+        .map(|(s, f)| (*s, f as &dyn Render))
         .collect();
-    let chunk = jobs.len().div_ceil(cores).max(1);
-    let rendered: Vec<Result<Output, CliError>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = jobs
-            .chunks(chunk)
-            .map(|part| {
-                scope.spawn(move || {
-                    part.iter()
-                        .map(|&(k, png)| {
-                            let (stem, fig) = &figures[k];
-                            Ok(if png {
-                                (format!("{stem}.png"), fig.png()?)
-                            } else {
-                                (format!("{stem}.svg"), fig.svg()?.into_bytes())
-                            })
-                        })
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("rendering thread"))
-            .collect()
-    });
-    for r in rendered {
-        out.push(r?);
-    }
+    out.extend(render_files(&list).map_err(|(_, e)| CliError::Plot(e))?);
     Ok(())
 }
 
 /// Creates `dir` and writes every file atomically; returns the paths.
 pub fn write_all(dir: &Path, files: &[Output]) -> Result<Vec<PathBuf>, CliError> {
-    std::fs::create_dir_all(dir).map_err(|source| {
-        CliError::Io(polbrdf_io::Error::Write {
-            path: dir.to_path_buf(),
-            source,
-        })
-    })?;
-    let mut paths = Vec::new();
-    for (name, bytes) in files {
-        let path = dir.join(name);
-        polbrdf_io::write_atomic(&path, bytes)?;
-        paths.push(path);
-    }
-    Ok(paths)
+    Ok(polbrdf_io::write_files(dir, files)?)
 }
 
 /// A CSV document from a header and rows of numbers (shortest round-trip form).
 pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
-    let mut text = header.join(",");
-    text.push('\n');
+    let mut t = CsvTable::new(header);
     for row in rows {
-        let cells: Vec<String> = row.into_iter().map(fmt_f64).collect();
-        text.push_str(&cells.join(","));
-        text.push('\n');
+        t.row(&row);
     }
-    text.into_bytes()
+    t.into_bytes()
 }
 
 /// Log colour limits: the data's range, at most 6 decades deep and at least one.

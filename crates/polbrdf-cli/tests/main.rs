@@ -7,4 +7,5 @@ mod common;
 mod contrast;
 mod eval;
 mod fit;
+mod golden;
 mod map;

@@ -1,9 +1,12 @@
-//! Benchmark of the general fit: 5 free parameters, 10 000 measurements (5 000 geometries ×
-//! BRDF and DoLP). Run with `cargo bench -p polbrdf-fit`; divan reports medians.
+//! Benchmark of the general fit: 5 free parameters (n, k, σ, ρ_D, ρ_V), 10 000 measurements
+//! (5 000 geometries × BRDF and DoLP), 3 starts — on the batch engine, and evaluated one
+//! geometry at a time as before the engine (`Evaluator::OneGeometry`), side by side in one run.
+//! Run with `cargo bench -p polbrdf-fit`; divan reports medians.
 
+use polbrdf::sample::SplitMix64;
 use polbrdf::MaterialSpec;
-use polbrdf_fit::synthetic::{measurements, random_geometries, Normal};
-use polbrdf_fit::{fit, FitOptions, Observable, Param};
+use polbrdf_fit::synthetic::{measurements, random_geometries};
+use polbrdf_fit::{fit, Evaluator, FitOptions, Observable, Param};
 
 fn main() {
     divan::main();
@@ -15,7 +18,7 @@ fn problem() -> (MaterialSpec, Vec<polbrdf_fit::Measurement>) {
     truth.rho_v = 0.01;
     truth.k = 0.02;
     let material = truth.build().unwrap();
-    let mut rng = Normal::new(7);
+    let mut rng = SplitMix64::new(7);
     let geoms = random_geometries(5_000, 80.0, &mut rng);
     let data = measurements(
         &material,
@@ -35,19 +38,35 @@ fn problem() -> (MaterialSpec, Vec<polbrdf_fit::Measurement>) {
     (start, data)
 }
 
-#[divan::bench(sample_count = 10)]
-fn five_parameters_10k_points(bencher: divan::Bencher) {
+const FREE: [Param; 5] = [
+    Param::N,
+    Param::K,
+    Param::SigmaDeg,
+    Param::RhoD,
+    Param::RhoV,
+];
+
+fn run(bencher: divan::Bencher, evaluator: Evaluator) {
     let (start, data) = problem();
-    let free = [
-        Param::N,
-        Param::K,
-        Param::SigmaDeg,
-        Param::RhoD,
-        Param::RhoV,
-    ];
+    let opts = FitOptions {
+        evaluator,
+        ..FitOptions::default()
+    };
     bencher.bench(|| {
-        let r = fit(&start, &free, &data, &FitOptions::default()).unwrap();
+        let r = fit(&start, &FREE, &data, &opts).unwrap();
         assert!(r.converged);
         r.chi2
     });
+}
+
+/// The fit on the batch engine (the default).
+#[divan::bench(sample_count = 10)]
+fn five_parameters_10k_points_engine(bencher: divan::Bencher) {
+    run(bencher, Evaluator::Engine);
+}
+
+/// The same fit, every residual evaluated one geometry at a time (`Material::evaluate_angles`).
+#[divan::bench(sample_count = 10)]
+fn five_parameters_10k_points_one_geometry(bencher: divan::Bencher) {
+    run(bencher, Evaluator::OneGeometry);
 }

@@ -6,23 +6,23 @@
 //!
 //! `cargo run -p polbrdf-fit --example goniometer_data > examples/paint-goniometer.csv`
 
+use polbrdf::sample::SplitMix64;
 use polbrdf::{Geometry, MaterialSpec};
-use polbrdf_fit::synthetic::Normal;
 
 fn main() {
     let mut truth = MaterialSpec::new(1.58, 11.0);
     truth.rho_d = 0.025;
     truth.rho_v = 0.012;
     let m = truth.build().expect("valid material");
-    let mut rng = Normal::new(2015);
+    let mut rng = SplitMix64::new(2015);
     println!("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf,sigma_brdf,dolp,sigma_dolp");
     let mut row = |ti: f64, pi: f64, tr: f64, pr: f64| {
         let e = m.evaluate(&Geometry::from_degrees(ti, pi, tr, pr).expect("valid angles"));
         let sb = 0.03 * e.brdf() + 1e-4;
         let sd = 0.01;
-        let b = e.brdf() + sb * rng.sample();
+        let b = e.brdf() + sb * rng.normal();
         // Not clipped to [0, 1]: clipping would bias the data near DoLP = 0 (backscatter).
-        let d = e.dolp() + sd * rng.sample();
+        let d = e.dolp() + sd * rng.normal();
         println!("{ti},{pi},{tr},{pr},{b:.6e},{sb:.3e},{d:.5},{sd}");
     };
     for ti in [20.0, 40.0, 60.0] {

@@ -1,11 +1,16 @@
 //! The general fit: any subset of the material parameters against any mix of measured BRDF,
-//! DoLP and Mueller entries, by Levenberg–Marquardt, with covariance and χ².
+//! DoLP and Mueller entries, by Levenberg–Marquardt, with covariance and χ² (docs/model.md §7a).
+//! Every residual vector is one call of the batch engine over the measured geometries.
 
 use crate::error::FitError;
 use crate::lm::{self, cholesky_solve, LmOptions};
 use crate::params::Param;
 use crate::zbs::{self, ZbsFit, ZbsPoint};
-use polbrdf::{AngleVariables, Evaluation, Geometry, Material, MaterialSpec};
+use polbrdf::engine::Prepared;
+use polbrdf::sample::SplitMix64;
+use polbrdf::{
+    AngleVariables, Engine, Evaluation, Geometry, GeometryBatch, Material, MaterialSpec, Mueller,
+};
 use rayon::prelude::*;
 
 /// A measurable quantity.
@@ -50,10 +55,15 @@ impl Observable {
 
     /// The model's value of this quantity.
     pub fn of(&self, e: &Evaluation) -> f64 {
+        self.of_pbrdf(&e.pbrdf)
+    }
+
+    /// This quantity of a pBRDF `F`: `F00`, the DoLP of `F·(1, 0, 0, 0)`, or `F_ij`.
+    pub fn of_pbrdf(&self, f: &Mueller) -> f64 {
         match *self {
-            Observable::Brdf => e.brdf(),
-            Observable::Dolp => e.dolp(),
-            Observable::Mueller(i, j) => e.pbrdf.0[i][j],
+            Observable::Brdf => f.m00(),
+            Observable::Dolp => f.dolp_unpolarized(),
+            Observable::Mueller(i, j) => f[(i, j)],
         }
     }
 }
@@ -71,6 +81,18 @@ pub struct Measurement {
     pub sigma: Option<f64>,
 }
 
+/// How the model is evaluated at the measured geometries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Evaluator {
+    /// The batch engine, over all geometries at once (default).
+    #[default]
+    Engine,
+    /// `Material::evaluate_angles` one geometry at a time, on angle variables computed once —
+    /// how fits were evaluated before the engine; kept to verify the engine's results and to
+    /// measure the difference side by side (`cargo bench -p polbrdf-fit`).
+    OneGeometry,
+}
+
 /// Settings of [`fit`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitOptions {
@@ -81,6 +103,8 @@ pub struct FitOptions {
     pub seed: u64,
     /// Stopping rules.
     pub lm: LmOptions,
+    /// How the model is evaluated.
+    pub evaluator: Evaluator,
 }
 
 impl Default for FitOptions {
@@ -89,8 +113,31 @@ impl Default for FitOptions {
             extra_starts: 2,
             seed: 1,
             lm: LmOptions::default(),
+            evaluator: Evaluator::Engine,
         }
     }
+}
+
+/// Where a fitted parameter ended, relative to its domain.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Bound {
+    /// Inside its domain: the value and its standard error describe it.
+    Interior,
+    /// At the lower bound of its domain (0 for k, a, ρ_D, ρ_V): the data prefer a value at or
+    /// below it. A standard error means nothing there (at k = 0 the model is even in k, so the
+    /// derivative vanishes): the result is the bound with a one-sided upper limit, and the
+    /// parameter's row of the covariance is NaN (the others' covariance is conditional on it).
+    AtLowerBound {
+        /// The one-sided 95 % upper limit from the profile of χ²: the value at which the best χ²
+        /// over the other free parameters has risen by 2.706 (× χ²/dof when the uncertainties
+        /// come from the residuals); `None` if χ² never rises that much (the data do not bound
+        /// the parameter).
+        upper_limit_95: Option<f64>,
+        /// The parameter's correlation with every free parameter (in their order), at the
+        /// upper limit (the other parameters at their best values there): what the parameter
+        /// trades off against, e.g. k against n.
+        correlation_at_limit: Option<Vec<f64>>,
+    },
 }
 
 /// One measurement beside the fitted model.
@@ -115,6 +162,8 @@ pub struct FitResult {
     pub values: Vec<f64>,
     /// Their standard errors, `sqrt(diag(covariance))`.
     pub stderr: Vec<f64>,
+    /// Whether each parameter ended inside its domain or at its bound (with an upper limit).
+    pub bounds: Vec<Bound>,
     /// Covariance matrix (row-major, in the order of `params`).
     pub covariance: Vec<Vec<f64>>,
     /// Correlation matrix.
@@ -145,19 +194,57 @@ pub struct FitResult {
     pub residuals: Vec<Residual>,
 }
 
-/// The prepared problem: unique geometries with their angle variables, and the measurements
-/// grouped by geometry in blocks for parallel evaluation.
+/// The prepared problem: the unique geometries (consecutive measurements at the same geometry
+/// share one), and per measurement its geometry, observable, value and weight.
 struct Problem<'a> {
     base: MaterialSpec,
     free: &'a [Param],
+    batch: GeometryBatch<'a>,
+    /// The geometry stages of `batch`, computed once for every evaluation.
+    prepared: Prepared,
+    /// Angle variables of each geometry (the one-geometry evaluator).
     angles: Vec<Option<AngleVariables>>,
     /// Per measurement: (geometry index, observable, value, weight 1/σ).
     rows: Vec<(usize, Observable, f64, f64)>,
-    /// Measurement index ranges of consecutive blocks of geometries.
-    blocks: Vec<std::ops::Range<usize>>,
+    /// Some measurement is a Mueller entry (the full matrix is needed, not BRDF and DoLP only).
+    full: bool,
+    evaluator: Evaluator,
+    /// Per geometry: `∂f_v/∂ρ_V = 2/(cosθi + cosθr)`, and 0 at or below the horizon (where the
+    /// model is 0 whatever ρ is) — the volume term's exact derivatives (`∂f_v/∂ρ_D` is 1
+    /// above the horizon).
+    dfv_drho_v: Vec<f64>,
 }
 
-const BLOCK: usize = 256;
+/// The model at every measured geometry: `F00` and the DoLP, or the whole matrix.
+#[derive(Debug, Clone)]
+enum Values {
+    BrdfDolp(Vec<f64>, Vec<f64>),
+    Full(Vec<[f64; 16]>),
+}
+
+impl Values {
+    /// `F00` and the DoLP of geometry `g`.
+    fn f00_dolp(&self, g: usize) -> (f64, f64) {
+        match self {
+            Values::BrdfDolp(b, d) => (b[g], d[g]),
+            Values::Full(f) => {
+                let m = Mueller::from_row_major(&f[g]);
+                (m.m00(), m.dolp_unpolarized())
+            }
+        }
+    }
+
+    fn of(&self, g: usize, obs: Observable) -> f64 {
+        match (self, obs) {
+            (Values::BrdfDolp(b, _), Observable::Brdf) => b[g],
+            (Values::BrdfDolp(_, d), Observable::Dolp) => d[g],
+            (Values::Full(f), obs) => obs.of_pbrdf(&Mueller::from_row_major(&f[g])),
+            (Values::BrdfDolp(..), Observable::Mueller(..)) => {
+                unreachable!("the full path for Mueller entries")
+            }
+        }
+    }
+}
 
 impl Problem<'_> {
     fn spec_at(&self, x: &[f64]) -> MaterialSpec {
@@ -177,46 +264,182 @@ impl Problem<'_> {
         out.iter().all(|v| v.is_finite())
     }
 
-    fn residuals_of(&self, material: &Material, out: &mut [f64]) {
-        let mut slices = Vec::with_capacity(self.blocks.len());
-        let mut rest = out;
-        for b in &self.blocks {
-            let (head, tail) = rest.split_at_mut(b.len());
-            slices.push(head);
-            rest = tail;
+    /// The model at every measured geometry.
+    fn values(&self, material: &Material) -> Values {
+        let n = self.batch.len();
+        match self.evaluator {
+            Evaluator::Engine if self.full => {
+                let mut f = vec![[0.0; 16]; n];
+                Engine::new(material)
+                    .mueller_prepared_into(&self.prepared, &mut f)
+                    .expect("lengths match");
+                Values::Full(f)
+            }
+            Evaluator::Engine => {
+                let (mut brdf, mut dolp) = (vec![0.0; n], vec![0.0; n]);
+                Engine::new(material)
+                    .brdf_dolp_prepared_into(&self.prepared, &mut brdf, &mut dolp)
+                    .expect("lengths match");
+                Values::BrdfDolp(brdf, dolp)
+            }
+            Evaluator::OneGeometry => {
+                let f: Vec<[f64; 16]> = self
+                    .angles
+                    .par_iter()
+                    .with_min_len(256)
+                    .map(|a| match a {
+                        Some(v) => material.evaluate_angles(v).pbrdf.to_row_major(),
+                        None => [0.0; 16],
+                    })
+                    .collect();
+                Values::Full(f)
+            }
         }
-        slices
-            .into_par_iter()
-            .zip(self.blocks.par_iter())
-            .for_each(|(out, range)| {
-                let mut last = usize::MAX;
-                let mut e = Evaluation::zero();
-                for (o, &(g, obs, value, w)) in out.iter_mut().zip(&self.rows[range.clone()]) {
-                    if g != last {
-                        e = match &self.angles[g] {
-                            Some(v) => material.evaluate_angles(v),
-                            None => Evaluation::zero(),
-                        };
-                        last = g;
-                    }
-                    *o = (obs.of(&e) - value) * w;
+    }
+
+    /// The model's value of every measurement.
+    fn model_values(&self, material: &Material, out: &mut [f64]) {
+        let v = self.values(material);
+        for (o, &(g, obs, _, _)) in out.iter_mut().zip(&self.rows) {
+            *o = v.of(g, obs);
+        }
+    }
+
+    /// The weighted residuals from the model's values.
+    fn residuals_from(&self, v: &Values, out: &mut [f64]) {
+        for (o, &(g, obs, value, w)) in out.iter_mut().zip(&self.rows) {
+            *o = (v.of(g, obs) - value) * w;
+        }
+    }
+
+    /// The exact column `∂r/∂ρ` of the volume constant `param` (ρ_D or ρ_V), from the model's
+    /// values: `f_v = ρ_D + 2ρ_V/(cosθi + cosθr)` adds to F00 only, so
+    /// `∂F00/∂ρ = ∂f_v/∂ρ`, `∂DoLP/∂ρ = −DoLP·(∂f_v/∂ρ)/F00`, and no other entry changes.
+    fn volume_column(&self, v: &Values, param: Param) -> Vec<f64> {
+        self.rows
+            .iter()
+            .map(|&(g, obs, _, w)| {
+                let dfv = match param {
+                    Param::RhoD => f64::from(u8::from(self.dfv_drho_v[g] > 0.0)),
+                    _ => self.dfv_drho_v[g],
+                };
+                let (f00, dolp) = v.f00_dolp(g);
+                w * match obs {
+                    Observable::Brdf | Observable::Mueller(0, 0) => dfv,
+                    Observable::Dolp if f00 > 0.0 => -dolp * dfv / f00,
+                    _ => 0.0,
                 }
-            });
+            })
+            .collect()
+    }
+
+    fn residuals_of(&self, material: &Material, out: &mut [f64]) {
+        self.residuals_from(&self.values(material), out);
+    }
+
+    /// χ² at natural parameter values (∞ where the model cannot be evaluated).
+    fn chi2(&self, x: &[f64]) -> f64 {
+        let mut r = vec![0.0; self.rows.len()];
+        if self.residuals(x, &mut r) {
+            r.iter().map(|v| v * v).sum()
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Minimizes χ² over the free parameters from natural values `x0`, with those of `hold`
+    /// fixed at their values in `x0`.
+    fn minimize(&self, x0: &[f64], hold: &[usize], opts: &LmOptions) -> (Vec<f64>, lm::LmReport) {
+        let objective = FitObjective {
+            problem: self,
+            x0,
+            moving: (0..self.free.len()).filter(|j| !hold.contains(j)).collect(),
+            last: std::cell::RefCell::new(None),
+        };
+        let u0: Vec<f64> = objective
+            .moving
+            .iter()
+            .map(|&j| self.free[j].to_internal(x0[j]))
+            .collect();
+        let lower: Vec<f64> = objective
+            .moving
+            .iter()
+            .map(|&j| self.free[j].lower_bound())
+            .collect();
+        let report = lm::minimize(&objective, &u0, &lower, self.rows.len(), opts);
+        (objective.to_x(&report.u), report)
     }
 }
 
-fn lcg(state: &mut u64) -> f64 {
-    *state = state
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    ((*state >> 11) as f64) / ((1u64 << 53) as f64)
+/// The objective of one minimization: the internal coordinates of the moving parameters, the
+/// others at their values in `x0`. It keeps the model's values at the point evaluated last, so
+/// that the Jacobian columns of ρ_D and ρ_V (which enter linearly) are exact and free.
+struct FitObjective<'p, 'x> {
+    problem: &'p Problem<'p>,
+    x0: &'x [f64],
+    moving: Vec<usize>,
+    last: std::cell::RefCell<Option<(Vec<f64>, Values)>>,
+}
+
+impl FitObjective<'_, '_> {
+    fn to_x(&self, u: &[f64]) -> Vec<f64> {
+        let mut x = self.x0.to_vec();
+        for (&j, u) in self.moving.iter().zip(u) {
+            x[j] = self.problem.free[j].from_internal(*u);
+        }
+        x
+    }
+}
+
+impl lm::Objective for FitObjective<'_, '_> {
+    fn residuals(&self, u: &[f64], r: &mut [f64]) -> bool {
+        let Ok(material) = self.problem.spec_at(&self.to_x(u)).build() else {
+            return false;
+        };
+        let v = self.problem.values(&material);
+        self.problem.residuals_from(&v, r);
+        *self.last.borrow_mut() = Some((u.to_vec(), v));
+        r.iter().all(|x| x.is_finite())
+    }
+
+    fn jacobian(&self, u: &[f64], r: &[f64]) -> Option<Vec<Vec<f64>>> {
+        let base = self
+            .last
+            .borrow_mut()
+            .take()
+            .filter(|(at, _)| at == u)
+            .map(|x| x.1);
+        let mut plus = vec![0.0; r.len()];
+        let mut up = u.to_vec();
+        let mut cols = Vec::with_capacity(u.len());
+        for (k, &j) in self.moving.iter().enumerate() {
+            let param = self.problem.free[j];
+            if let (Some(v), Param::RhoD | Param::RhoV) = (&base, param) {
+                cols.push(self.problem.volume_column(v, param));
+                continue;
+            }
+            // Forward difference (as `lm::jacobian`).
+            let h = f64::EPSILON.sqrt() * u[k].abs().max(1.0);
+            up[k] = u[k] + h;
+            let ok = self.residuals(&up, &mut plus);
+            let step = up[k] - u[k];
+            up[k] = u[k];
+            if !ok {
+                return None;
+            }
+            cols.push(plus.iter().zip(r).map(|(p, q)| (p - q) / step).collect());
+        }
+        Some(cols)
+    }
 }
 
 /// Fits the `free` parameters of `base` to `data`.
 ///
-/// Parameters are kept in their domain by fitting `ln x` (strictly positive ones) or `√x`
-/// (non-negative ones); the covariance is computed in the natural parameters from a
-/// central-difference Jacobian at the solution.
+/// Strictly positive parameters are fitted as `ln x`; non-negative ones (k, a, ρ_D, ρ_V) as `x`
+/// with the bound `x ≥ 0`, which the minimizer respects by projected steps — so a parameter
+/// the data push to 0 ends there, is reported as [`Bound::AtLowerBound`] with a one-sided upper
+/// limit, and does not make the fit fail. The covariance is computed in the natural parameters
+/// from a central-difference Jacobian at the solution (forward differences at a bound).
 ///
 /// # Errors
 /// [`FitError::TooFewPoints`] unless there are more measurements than free parameters;
@@ -241,13 +464,11 @@ pub fn fit(
         });
     }
     // Group consecutive measurements at the same geometry.
-    let mut angles = Vec::new();
     let mut geoms: Vec<Geometry> = Vec::new();
     let mut rows = Vec::with_capacity(m);
     for d in data {
         if geoms.last() != Some(&d.geometry) {
             geoms.push(d.geometry);
-            angles.push(d.geometry.angle_variables());
         }
         rows.push((
             geoms.len() - 1,
@@ -256,23 +477,35 @@ pub fn fit(
             d.sigma.map_or(1.0, |s| 1.0 / s),
         ));
     }
-    let mut blocks = Vec::new();
-    let mut start = 0;
-    while start < m {
-        let g0 = rows[start].0;
-        let mut end = start;
-        while end < m && rows[end].0 < g0 + BLOCK {
-            end += 1;
-        }
-        blocks.push(start..end);
-        start = end;
-    }
+    let cols: [Vec<f64>; 4] = [
+        geoms.iter().map(Geometry::theta_i).collect(),
+        geoms.iter().map(Geometry::phi_i).collect(),
+        geoms.iter().map(Geometry::theta_r).collect(),
+        geoms.iter().map(Geometry::phi_r).collect(),
+    ];
+    let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3])?;
     let problem = Problem {
         base: base.clone(),
         free,
-        angles,
+        prepared: Engine::new(&base.build()?).prepare(&batch),
+        batch,
+        angles: match opts.evaluator {
+            Evaluator::OneGeometry => geoms.iter().map(Geometry::angle_variables).collect(),
+            Evaluator::Engine => Vec::new(),
+        },
+        full: rows.iter().any(|r| matches!(r.1, Observable::Mueller(..))),
+        dfv_drho_v: geoms
+            .iter()
+            .map(|g| {
+                if g.is_above_horizon() {
+                    2.0 / (g.theta_i().cos() + g.theta_r().cos())
+                } else {
+                    0.0
+                }
+            })
+            .collect(),
         rows,
-        blocks,
+        evaluator: opts.evaluator,
     };
 
     // Start values.
@@ -280,8 +513,10 @@ pub fn fit(
         .iter()
         .map(|p| {
             let v = p.value(base)?;
+            // At exactly 0 the gradient of a non-negative parameter can vanish (the model is
+            // even in k): start at its typical magnitude instead.
             Ok(if !p.strictly_positive() && v == 0.0 {
-                p.nonzero_start()
+                p.typical_scale()
             } else {
                 v
             })
@@ -303,35 +538,26 @@ pub fn fit(
             starts.push(s);
         }
     }
-    let mut seed = opts.seed.wrapping_mul(0x9E3779B97F4A7C15) | 1;
+    let mut rng = SplitMix64::new(opts.seed);
     for _ in 0..opts.extra_starts {
+        // A factor 2^(±1) on each value.
         starts.push(
             initial
                 .iter()
-                .map(|v| v * 2f64.powf(2.0 * lcg(&mut seed) - 1.0))
+                .map(|v| v * 2f64.powf(2.0 * rng.next_f64() - 1.0))
                 .collect(),
         );
     }
 
-    // Minimize from every start (in parallel) in the transformed coordinates.
-    let to_x = |u: &[f64]| -> Vec<f64> {
-        free.iter()
-            .zip(u)
-            .map(|(p, u)| p.from_internal(*u))
-            .collect()
-    };
-    let f_u = |u: &[f64], r: &mut [f64]| problem.residuals(&to_x(u), r);
-    let reports: Vec<lm::LmReport> = starts
+    // Minimize from every start (in parallel).
+    let reports: Vec<(Vec<f64>, lm::LmReport)> = starts
         .par_iter()
-        .map(|s| {
-            let u0: Vec<f64> = free.iter().zip(s).map(|(p, x)| p.to_internal(*x)).collect();
-            lm::minimize(&f_u, &u0, m, &opts.lm)
-        })
+        .map(|s| problem.minimize(s, &[], &opts.lm))
         .collect();
-    let best = reports
+    let (x, best) = reports
         .iter()
-        .filter(|r| r.chi2.is_finite())
-        .min_by(|a, b| a.chi2.total_cmp(&b.chi2))
+        .filter(|r| r.1.chi2.is_finite())
+        .min_by(|a, b| a.1.chi2.total_cmp(&b.1.chi2))
         .cloned()
         .ok_or_else(|| {
             FitError::Model(polbrdf::Error::InconsistentParameters(
@@ -340,14 +566,53 @@ pub fn fit(
         })?;
     let agreeing = reports
         .iter()
-        .filter(|r| r.chi2 <= best.chi2 * (1.0 + 1e-6) + 1e-300)
+        .filter(|r| r.1.chi2 <= best.chi2 * (1.0 + 1e-6) + 1e-300)
         .count();
-    let x = to_x(&best.u);
 
-    // Covariance in the natural parameters.
+    // A parameter left at its bound: its profile χ² gives the upper limit — or a better
+    // point inside the domain (the minimizer stopped where the gradient vanishes at the
+    // bound), from which the fit is resumed.
+    let (mut x, mut best) = (x, best);
+    let mut limits: Vec<(usize, UpperLimit)> = Vec::new();
+    let mut resumed = 0;
+    loop {
+        // The last digits: Gauss–Newton steps on the central-difference Jacobian (not needed
+        // where the minimizer stopped on a vanishing gradient, within 1e-7 standard errors).
+        if !best.message.starts_with("gradient") {
+            x = polish(&problem, x, best.chi2);
+        }
+        best.chi2 = problem.chi2(&x);
+        let scaled = data.iter().any(|d| d.sigma.is_none());
+        let unit = if scaled {
+            best.chi2 / (m - p) as f64
+        } else {
+            1.0
+        };
+        limits.clear();
+        let mut better = None;
+        for j in (0..p).filter(|&j| x[j] <= free[j].lower_bound()) {
+            match profile_upper_limit(&problem, &x, j, best.chi2, ONE_SIDED_95 * unit, &opts.lm) {
+                Profile::Limit(l) => limits.push((j, l)),
+                Profile::Better(x2) => {
+                    better = Some(x2);
+                    break;
+                }
+            }
+        }
+        match better {
+            Some(x2) if resumed < 3 => {
+                resumed += 1;
+                let (x3, report) = problem.minimize(&x2, &[], &opts.lm);
+                if report.chi2 < best.chi2 {
+                    (x, best) = (x3, report);
+                }
+            }
+            _ => break,
+        }
+    }
+    // Covariance in the natural parameters, of those inside their domain.
+    let interior: Vec<usize> = (0..p).filter(|&j| x[j] > free[j].lower_bound()).collect();
     let jac = natural_jacobian(&problem, &x, m);
-    let (a, _) = lm::normal_equations(&jac, &vec![0.0; m]);
-    check_identifiable(free, &a, &x, &problem)?;
     let scaled_by_residuals = data.iter().any(|d| d.sigma.is_none());
     let dof = m - p;
     let reduced_chi2 = best.chi2 / dof as f64;
@@ -356,33 +621,49 @@ pub fn fit(
     } else {
         1.0
     };
-    // Columns of (JᵀJ)⁻¹; the matrix is symmetric, so they are also its rows.
-    let covariance: Vec<Vec<f64>> = (0..p)
-        .map(|j| {
-            let e: Vec<f64> = (0..p).map(|i| f64::from(u8::from(i == j))).collect();
-            cholesky_solve(&a, &e)
-                .map(|col| col.into_iter().map(|v| v * scale).collect())
-                .ok_or_else(|| unidentifiable_all(free))
-        })
-        .collect::<Result<_, _>>()?;
+    let inner: Vec<Param> = interior.iter().map(|&j| free[j]).collect();
+    let inner_x: Vec<f64> = interior.iter().map(|&j| x[j]).collect();
+    let inner_cov = covariance_of(&problem, &inner, &inner_x, &interior, &jac, scale)?;
+    let mut covariance = vec![vec![f64::NAN; p]; p];
+    for (a, &i) in interior.iter().enumerate() {
+        for (b, &j) in interior.iter().enumerate() {
+            covariance[i][j] = inner_cov[a][b];
+        }
+    }
     let stderr: Vec<f64> = (0..p).map(|i| covariance[i][i].max(0.0).sqrt()).collect();
-    let correlation = (0..p)
-        .map(|i| {
-            (0..p)
-                .map(|j| covariance[i][j] / (stderr[i] * stderr[j]).max(f64::MIN_POSITIVE))
-                .collect()
+    let correlation = correlation_of(&covariance);
+    let bounds = (0..p)
+        .map(|j| match limits.iter().find(|l| l.0 == j) {
+            None => Bound::Interior,
+            Some((_, limit)) => Bound::AtLowerBound {
+                upper_limit_95: limit.as_ref().map(|l| l.0),
+                correlation_at_limit: limit.as_ref().and_then(|(_, xu)| {
+                    let jac = natural_jacobian(&problem, xu, m);
+                    let all: Vec<usize> = (0..p).collect();
+                    let c = covariance_of(&problem, free, xu, &all, &jac, scale).ok()?;
+                    Some(correlation_of(&c)[j].clone())
+                }),
+            },
         })
+        .collect();
+    let stderr = stderr
+        .into_iter()
+        .enumerate()
+        .map(|(j, s)| if interior.contains(&j) { s } else { f64::NAN })
         .collect();
 
     let spec = problem.spec_at(&x);
     let material = spec.build()?;
     let sigma_scale = scale.sqrt();
+    let mut model = vec![0.0; m];
+    problem.model_values(&material, &mut model);
     let residuals = data
         .iter()
+        .zip(model)
         .enumerate()
-        .map(|(index, d)| Residual {
+        .map(|(index, (d, model))| Residual {
             index,
-            model: d.observable.of(&material.evaluate(&d.geometry)),
+            model,
             data: d.value,
             sigma: d.sigma.unwrap_or(sigma_scale),
         })
@@ -391,6 +672,7 @@ pub fn fit(
         params: free.to_vec(),
         values: x,
         stderr,
+        bounds,
         covariance,
         correlation,
         chi2: best.chi2,
@@ -407,15 +689,254 @@ pub fn fit(
     })
 }
 
+/// `Δχ²` of a one-sided 95 % limit: `1.6449²`.
+const ONE_SIDED_95: f64 = 2.705_543_454_095_404;
+
+/// The covariance `(JᵀJ)⁻¹·scale` of the parameters `params` (columns `cols` of `jac`),
+/// after the identifiability check.
+fn covariance_of(
+    problem: &Problem<'_>,
+    params: &[Param],
+    x: &[f64],
+    cols: &[usize],
+    jac: &[Vec<f64>],
+    scale: f64,
+) -> Result<Vec<Vec<f64>>, FitError> {
+    let q = cols.len();
+    let sub: Vec<Vec<f64>> = cols.iter().map(|&j| jac[j].clone()).collect();
+    let (a, _) = lm::normal_equations(&sub, &vec![0.0; problem.rows.len()]);
+    check_identifiable(params, &a, x, problem)?;
+    // Columns of (JᵀJ)⁻¹; the matrix is symmetric, so they are also its rows.
+    (0..q)
+        .map(|j| {
+            let e: Vec<f64> = (0..q).map(|i| f64::from(u8::from(i == j))).collect();
+            cholesky_solve(&a, &e)
+                .map(|col| col.into_iter().map(|v| v * scale).collect())
+                .ok_or_else(|| unidentifiable_all(params))
+        })
+        .collect()
+}
+
+/// `C_ij/sqrt(C_ii C_jj)` (NaN where C is).
+fn correlation_of(c: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let d: Vec<f64> = (0..c.len()).map(|i| c[i][i].max(0.0).sqrt()).collect();
+    (0..c.len())
+        .map(|i| {
+            (0..c.len())
+                .map(|j| c[i][j] / (d[i] * d[j]).max(f64::MIN_POSITIVE))
+                .collect()
+        })
+        .collect()
+}
+
+/// A one-sided upper limit and the best parameters there (`None`: the data do not bound it).
+type UpperLimit = Option<(f64, Vec<f64>)>;
+
+/// What the profile of a parameter at its bound found.
+enum Profile {
+    /// The one-sided upper limit and the best parameters there.
+    Limit(UpperLimit),
+    /// A point inside the domain with a lower χ² than the fit's.
+    Better(Vec<f64>),
+}
+
+/// A first guess of where the profile χ² of parameter `j` (at its bound in `x`) rises by
+/// `delta`, from the quadratic model of χ² in the internal coordinates at `x`: with the
+/// gradient `g` and the Schur complement `S` of `JᵀJ` for coordinate `j` (the others
+/// re-optimized), `Δχ²(u) ≈ 2g·u + S·u²` from the bound; `None` where the model says nothing.
+fn profile_guess(problem: &Problem<'_>, x: &[f64], j: usize, delta: f64) -> Option<f64> {
+    use lm::Objective;
+    let p = x.len();
+    let objective = FitObjective {
+        problem,
+        x0: x,
+        moving: (0..p).collect(),
+        last: std::cell::RefCell::new(None),
+    };
+    let u: Vec<f64> = (0..p).map(|i| problem.free[i].to_internal(x[i])).collect();
+    let mut r = vec![0.0; problem.rows.len()];
+    if !objective.residuals(&u, &mut r) {
+        return None;
+    }
+    let jac = objective.jacobian(&u, &r)?;
+    let (a, g) = lm::normal_equations(&jac, &r);
+    // S = A_jj − A_jo·A_oo⁻¹·A_oj.
+    let others: Vec<usize> = (0..p).filter(|&i| i != j).collect();
+    let q = others.len();
+    let mut s = a[j * p + j];
+    if q > 0 {
+        let a_oo: Vec<f64> = others
+            .iter()
+            .flat_map(|&i| others.iter().map(move |&k| (i, k)))
+            .map(|(i, k)| a[i * p + k])
+            .collect();
+        let a_oj: Vec<f64> = others.iter().map(|&i| a[i * p + j]).collect();
+        let y = cholesky_solve(&a_oo, &a_oj)?;
+        s -= a_oj.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>();
+    }
+    let gj = g[j].max(0.0);
+    if s.is_nan() || s <= 0.0 {
+        return None;
+    }
+    let du = (-gj + (gj * gj + s * delta).sqrt()) / s;
+    Some(problem.free[j].from_internal(u[j] + du))
+}
+
+/// The profile χ² of parameter `j` at value `t` — the best χ² over the other free parameters
+/// with parameter `j` held at `t`, started from `x` — and the parameters there.
+fn profile_at(
+    problem: &Problem<'_>,
+    x: &[f64],
+    j: usize,
+    t: f64,
+    lm: &LmOptions,
+) -> (f64, Vec<f64>) {
+    let mut x0 = x.to_vec();
+    x0[j] = t;
+    if problem.free.len() == 1 {
+        return (problem.chi2(&x0), x0);
+    }
+    let (xt, report) = problem.minimize(&x0, &[j], lm);
+    (report.chi2, xt)
+}
+
+/// The value of parameter `j` (at its lower bound in `x`, with χ² `chi2`) where its profile χ²
+/// has risen by `delta` — the one-sided 95 % upper limit — to 0.5 % of `delta`: a secant search
+/// in `(ln t, ln Δχ²)` (exact for `Δχ² ∝ tᵖ`), bracketed, each profile fit started from the
+/// previous one's parameters. Unbounded when χ² has not risen that much by 10⁶ times the
+/// parameter's typical scale; [`Profile::Better`] if some point of the profile lies below `chi2`
+/// (by more than its rounding).
+fn profile_upper_limit(
+    problem: &Problem<'_>,
+    x: &[f64],
+    j: usize,
+    chi2: f64,
+    delta: f64,
+    lm: &LmOptions,
+) -> Profile {
+    let lm = LmOptions {
+        ftol: 1e-10,
+        xtol: 1e-7,
+        ..*lm
+    };
+    let bound = x[j];
+    let scale = problem.free[j].typical_scale();
+    let rounding = 1e-9 * chi2.abs().max(1.0);
+    let mut t = profile_guess(problem, x, j, delta)
+        .filter(|t| *t > bound && t.is_finite())
+        .unwrap_or(bound + scale);
+    let mut warm = x.to_vec();
+    // (distance from the bound, Δχ², parameters) on either side of the target.
+    let mut below: Option<(f64, f64)> = None;
+    let mut above: Option<(f64, f64, Vec<f64>)> = None;
+    for _ in 0..40 {
+        let (c, xt) = profile_at(problem, &warm, j, t, &lm);
+        let d = c - chi2;
+        if d < -rounding {
+            return Profile::Better(xt);
+        }
+        let dist = t - bound;
+        if (d - delta).abs() <= 5e-3 * delta {
+            return Profile::Limit(Some((t, xt)));
+        }
+        if d < delta {
+            below = Some((dist, d.max(rounding)));
+        } else {
+            above = Some((dist, d, xt.clone()));
+        }
+        warm = xt;
+        let next = match (&below, &above) {
+            (Some((t0, d0)), Some((t1, d1, _))) => {
+                // Secant in (ln t, ln Δ), kept inside the bracket.
+                let p = (d1 / d0).ln() / (t1 / t0).ln();
+                let guess = t0 * (delta / d0).powf(1.0 / p.max(0.5));
+                guess.clamp(t0 + 0.05 * (t1 - t0), t1 - 0.05 * (t1 - t0))
+            }
+            // One side only: as if Δ ∝ t³ (between the t² of a linear rise in k² and the t⁴
+            // of a quadratic one), by at most ×10.
+            (Some((t0, d0)), None) => t0 * (delta / d0).cbrt().clamp(1.0, 10.0),
+            (None, Some((t1, d1, _))) => t1 * (delta / d1).cbrt().clamp(0.1, 1.0),
+            (None, None) => unreachable!("one side is set"),
+        };
+        if next > 1e6 * scale {
+            return Profile::Limit(None);
+        }
+        t = bound + next;
+    }
+    Profile::Limit(above.map(|(d, _, xt)| (bound + d, xt)))
+}
+
+/// Gauss–Newton steps from the minimizer's result `x` on the central-difference Jacobian in the
+/// natural parameters, until the step is below 1e-8 standard errors (at most 8 steps), for the
+/// parameters inside their domain.
+///
+/// Levenberg–Marquardt judges a step by the decrease of χ², which near the minimum is below
+/// χ²'s own rounding (~1e-11 for 10⁴ values, a step of ~3e-6 standard errors), and its
+/// forward-difference Jacobian is accurate to ~1e-8; so its result can sit 1e-5 standard
+/// errors from the minimum. There the quadratic model is exact to second order, and the
+/// central-difference gradient (accurate to ~1e-10) locates the minimum itself. Only a point
+/// already within 1e-2 standard errors is polished; a step that fails to evaluate or leaves the
+/// domain ends it.
+fn polish(problem: &Problem<'_>, mut x: Vec<f64>, chi2: f64) -> Vec<f64> {
+    let m = problem.rows.len();
+    let p = x.len();
+    let unit = (chi2 / m.saturating_sub(p).max(1) as f64).max(1.0);
+    let mut r = vec![0.0; m];
+    let mut last = f64::INFINITY;
+    for _ in 0..8 {
+        if !problem.residuals(&x, &mut r) {
+            break;
+        }
+        let free: Vec<usize> = (0..p)
+            .filter(|&j| x[j] > problem.free[j].lower_bound())
+            .collect();
+        if free.is_empty() {
+            break;
+        }
+        let jac = natural_jacobian(problem, &x, m);
+        let cols: Vec<Vec<f64>> = free.iter().map(|&j| jac[j].clone()).collect();
+        let (a, g) = lm::normal_equations(&cols, &r);
+        let Some(step) = cholesky_solve(&a, &g) else {
+            break;
+        };
+        let decrement: f64 = step.iter().zip(&g).map(|(s, g)| s * g).sum();
+        let near = decrement <= 1e-4 * unit; // false for NaN
+                                             // Done at 1e-8 standard errors, or when a step no longer shortens the next (the noise
+                                             // floor of the derivatives).
+        if !near || decrement <= 1e-16 * unit || decrement > 0.25 * last {
+            break;
+        }
+        last = decrement;
+        let mut next = x.clone();
+        for (k, &j) in free.iter().enumerate() {
+            next[j] = x[j] - step[k];
+        }
+        let inside = free.iter().all(|&j| {
+            let param = problem.free[j];
+            if param.strictly_positive() {
+                next[j] > 0.0
+            } else {
+                next[j] >= 0.0
+            }
+        });
+        if !inside || !problem.residuals(&next, &mut r) {
+            break;
+        }
+        x = next;
+    }
+    x
+}
+
 /// Jacobian of the weighted residuals with respect to the natural parameters: central
-/// differences with relative steps 1e-6 (forward where a non-negative parameter sits at 0).
+/// differences with steps `1e-6·max(|x|, step scale)` (forward where a non-negative parameter
+/// sits at 0).
 fn natural_jacobian(problem: &Problem<'_>, x: &[f64], m: usize) -> Vec<Vec<f64>> {
     let mut plus = vec![0.0; m];
     let mut minus = vec![0.0; m];
     let mut xp = x.to_vec();
     (0..x.len())
         .map(|j| {
-            let h = if x[j] != 0.0 { 1e-6 * x[j].abs() } else { 1e-9 };
+            let h = 1e-6 * x[j].abs().max(problem.free[j].step_scale());
             xp[j] = x[j] + h;
             problem.residuals(&xp, &mut plus);
             let central = x[j] - h > 0.0;
@@ -454,8 +975,9 @@ fn check_identifiable(
     problem: &Problem<'_>,
 ) -> Result<(), FitError> {
     let p = free.len();
-    // Sensitivity of the residual vector to a 1 % change of each parameter, against the size of
-    // the weighted data.
+    // Sensitivity of the residual vector to a change of each parameter by its own size (by its
+    // typical scale where it is smaller, e.g. 0 at its bound), against the size of the weighted
+    // data.
     let data_norm = problem
         .rows
         .iter()
@@ -464,7 +986,10 @@ fn check_identifiable(
         .sqrt()
         .max(f64::MIN_POSITIVE);
     let dead: Vec<String> = (0..p)
-        .filter(|&j| a[j * p + j].sqrt() * x[j].abs().max(1e-12) < 1e-9 * data_norm)
+        .filter(|&j| {
+            let change = x[j].abs().max(free[j].typical_scale());
+            a[j * p + j].sqrt() * change < 1e-9 * data_norm
+        })
         .map(|j| format!("`{}`", free[j].name()))
         .collect();
     if !dead.is_empty() {
@@ -473,7 +998,7 @@ fn check_identifiable(
     // Equilibrated normal matrix: a correlation matrix of the linearized problem.
     let d: Vec<f64> = (0..p).map(|j| a[j * p + j].sqrt()).collect();
     let s: Vec<f64> = (0..p * p).map(|k| a[k] / (d[k / p] * d[k % p])).collect();
-    let (values, vectors) = polbrdf::linalg::symmetric_eigen_dyn(&s, p);
+    let (values, vectors) = polbrdf::numeric::linalg::symmetric_eigen_dyn(&s, p);
     for (k, &lambda) in values.iter().enumerate() {
         if lambda < 1e-12 {
             let names: Vec<String> = (0..p)

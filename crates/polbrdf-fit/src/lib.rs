@@ -16,5 +16,5 @@ pub mod synthetic;
 pub mod zbs;
 
 pub use error::FitError;
-pub use fit::{fit, FitOptions, FitResult, Measurement, Observable, Residual};
+pub use fit::{fit, Bound, Evaluator, FitOptions, FitResult, Measurement, Observable, Residual};
 pub use params::Param;

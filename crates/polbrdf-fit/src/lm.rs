@@ -1,5 +1,6 @@
 //! A Levenberg–Marquardt least-squares minimizer (Marquardt's diagonal scaling, Nielsen's
-//! damping update) with forward-difference Jacobians.
+//! damping update) with forward-difference Jacobians and lower bounds (projected steps with an
+//! active set).
 
 /// Stopping rules.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,6 +67,25 @@ pub fn jacobian(
     Some(cols)
 }
 
+/// A least-squares objective: residuals, and their Jacobian (forward differences unless the
+/// objective knows better).
+pub trait Objective {
+    /// Fills the `m` residuals at `u`; false where the model cannot be evaluated.
+    fn residuals(&self, u: &[f64], r: &mut [f64]) -> bool;
+
+    /// The Jacobian (column-major) at `u`, where `r` holds the residuals at `u` — the point the
+    /// minimizer evaluated last. `None` if the model fails at a perturbed point.
+    fn jacobian(&self, u: &[f64], r: &[f64]) -> Option<Vec<Vec<f64>>> {
+        jacobian(&|u: &[f64], out: &mut [f64]| self.residuals(u, out), u, r)
+    }
+}
+
+impl<F: Fn(&[f64], &mut [f64]) -> bool> Objective for F {
+    fn residuals(&self, u: &[f64], r: &mut [f64]) -> bool {
+        self(u, r)
+    }
+}
+
 /// `JᵀJ` (p×p, row-major) and `Jᵀr` of a column-major Jacobian.
 pub fn normal_equations(jac: &[Vec<f64>], r: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let p = jac.len();
@@ -113,16 +133,25 @@ pub fn cholesky_solve(a: &[f64], b: &[f64]) -> Option<Vec<f64>> {
     Some(x)
 }
 
-/// Minimizes `Σ r(u)²` from `u0`. `f(u, r)` fills the `m` residuals and returns false where the
-/// model cannot be evaluated (such a step is rejected).
+/// Minimizes `Σ r(u)²` from `u0` subject to `u ≥ lower` (componentwise; `−∞` for none).
+/// `f(u, r)` fills the `m` residuals and returns false where the model cannot be evaluated
+/// (such a step is rejected).
+///
+/// Bounds: a coordinate at its bound whose gradient points out of the domain is held there
+/// (the active set, recomputed every iteration); the step of the others is solved for and then
+/// projected onto the domain. Forward differences step inward from a bound, so the model is
+/// never evaluated outside it. Converged as without bounds, with the gradient test on the free
+/// coordinates only.
 pub fn minimize(
-    f: &(impl Fn(&[f64], &mut [f64]) -> bool + ?Sized),
+    f: &impl Objective,
     u0: &[f64],
+    lower: &[f64],
     m: usize,
     opts: &LmOptions,
 ) -> LmReport {
     let p = u0.len();
-    let mut u = u0.to_vec();
+    assert_eq!(lower.len(), p, "one bound per coordinate");
+    let mut u: Vec<f64> = u0.iter().zip(lower).map(|(x, l)| x.max(*l)).collect();
     let mut r = vec![0.0; m];
     let report = |u: Vec<f64>, chi2, iterations, converged, message: &str| LmReport {
         u,
@@ -131,7 +160,7 @@ pub fn minimize(
         converged,
         message: message.to_string(),
     };
-    if !f(&u, &mut r) {
+    if !f.residuals(&u, &mut r) {
         return report(
             u,
             f64::INFINITY,
@@ -149,7 +178,7 @@ pub fn minimize(
         if chi2 == 0.0 {
             return report(u, chi2, iterations, true, "exact fit (χ² = 0)");
         }
-        let Some(jac) = jacobian(f, &u, &r) else {
+        let Some(jac) = f.jacobian(&u, &r) else {
             return report(
                 u,
                 chi2,
@@ -159,8 +188,11 @@ pub fn minimize(
             );
         };
         let (a, g) = normal_equations(&jac, &r);
+        // Held at the bound: the descent direction −g points out of the domain.
+        let active: Vec<bool> = (0..p).map(|i| u[i] <= lower[i] && g[i] >= 0.0).collect();
         let diag: Vec<f64> = (0..p).map(|i| a[i * p + i].max(1e-300)).collect();
         let grad = (0..p)
+            .filter(|&i| !active[i])
             .map(|i| g[i].abs() / (chi2 * diag[i]).sqrt())
             .fold(0.0, f64::max);
         if grad < opts.gtol {
@@ -169,14 +201,43 @@ pub fn minimize(
         if lambda < 0.0 {
             lambda = 1e-3;
         }
+        // The damped step on the coordinates not held; a coordinate at its bound that the step
+        // would push out is held too, and the step solved again.
+        let solve = |lambda: f64| -> Option<Vec<f64>> {
+            let mut held = active.clone();
+            loop {
+                let free: Vec<usize> = (0..p).filter(|&i| !held[i]).collect();
+                let q = free.len();
+                let mut damped = vec![0.0; q * q];
+                for (x, &i) in free.iter().enumerate() {
+                    for (y, &j) in free.iter().enumerate() {
+                        damped[x * q + y] = a[i * p + j];
+                    }
+                    damped[x * q + x] += lambda * diag[i];
+                }
+                let neg_g: Vec<f64> = free.iter().map(|&i| -g[i]).collect();
+                let step = cholesky_solve(&damped, &neg_g)?;
+                let blocked: Vec<usize> = free
+                    .iter()
+                    .zip(&step)
+                    .filter(|(&i, s)| u[i] <= lower[i] && **s < 0.0)
+                    .map(|(&i, _)| i)
+                    .collect();
+                if blocked.is_empty() {
+                    let mut d = vec![0.0; p];
+                    for (x, &i) in free.iter().enumerate() {
+                        d[i] = step[x];
+                    }
+                    return Some(d);
+                }
+                for i in blocked {
+                    held[i] = true;
+                }
+            }
+        };
         loop {
             iterations += 1;
-            let mut damped = a.clone();
-            for i in 0..p {
-                damped[i * p + i] += lambda * diag[i];
-            }
-            let neg_g: Vec<f64> = g.iter().map(|x| -x).collect();
-            let Some(delta) = cholesky_solve(&damped, &neg_g) else {
+            let Some(step) = solve(lambda) else {
                 lambda *= nu;
                 nu *= 2.0;
                 if iterations >= opts.max_iterations {
@@ -184,17 +245,36 @@ pub fn minimize(
                 }
                 continue;
             };
-            let u_new: Vec<f64> = u.iter().zip(&delta).map(|(x, d)| x + d).collect();
-            let ok = f(&u_new, &mut r_new);
+            // Along the step as far as the domain allows: the first bound it meets stops it
+            // there (so the step stays a descent direction, which a projection would not).
+            let (alpha, stop) = (0..p)
+                .filter(|&i| step[i] < 0.0 && lower[i].is_finite())
+                .map(|i| ((lower[i] - u[i]) / step[i], i))
+                .filter(|(t, _)| *t < 1.0)
+                .fold(
+                    (1.0, None),
+                    |acc, (t, i)| if t < acc.0 { (t, Some(i)) } else { acc },
+                );
+            let mut u_new: Vec<f64> = (0..p).map(|i| u[i] + alpha * step[i]).collect();
+            if let Some(i) = stop {
+                u_new[i] = lower[i];
+            }
+            for i in 0..p {
+                u_new[i] = u_new[i].max(lower[i]);
+            }
+            let delta: Vec<f64> = u_new.iter().zip(&u).map(|(a, b)| a - b).collect();
+            let ok = f.residuals(&u_new, &mut r_new);
             let chi2_new: f64 = if ok {
                 r_new.iter().map(|x| x * x).sum()
             } else {
                 f64::INFINITY
             };
-            // Predicted reduction of the linear model: δᵀ(λ·D·δ − g).
-            let predicted: f64 = (0..p)
-                .map(|i| delta[i] * (lambda * diag[i] * delta[i] - g[i]))
+            // Predicted reduction of the linear model, −(2gᵀδ + δᵀJᵀJδ) (for the full damped
+            // step this is δᵀ(λ·D·δ − g)).
+            let quad: f64 = (0..p)
+                .map(|i| delta[i] * (0..p).map(|j| a[i * p + j] * delta[j]).sum::<f64>())
                 .sum();
+            let predicted = -(2.0 * (0..p).map(|i| g[i] * delta[i]).sum::<f64>() + quad);
             if chi2_new.is_finite() && chi2_new < chi2 {
                 let rho = (chi2 - chi2_new) / predicted.max(f64::MIN_POSITIVE);
                 lambda *= (1.0 / 3.0f64).max(1.0 - (2.0 * rho - 1.0).powi(3));

@@ -98,7 +98,7 @@ impl Param {
     }
 
     /// True for parameters that must be strictly positive (fitted as `ln x`); the others are
-    /// non-negative (fitted as `x = u²`).
+    /// non-negative (fitted as `x` itself, bounded below by 0).
     pub fn strictly_positive(self) -> bool {
         matches!(
             self,
@@ -147,31 +147,77 @@ impl Param {
         }
     }
 
-    /// Internal (unconstrained) coordinate of value `x`: `ln x` or `sqrt(x)`.
+    /// Internal coordinate of value `x`: `ln x` (strictly positive parameters), `k²` for k (the
+    /// model depends on k through `N² = n² − k² + 2ink`, and a reflectance is even in k — so its
+    /// first derivative in k vanishes at k = 0, while in k² it does not), or `x` itself (ρ_D, ρ_V,
+    /// a, which enter linearly); the last two with the lower bound [`Param::lower_bound`].
     pub fn to_internal(self, x: f64) -> f64 {
         if self.strictly_positive() {
             x.ln()
+        } else if self == Param::K {
+            x.max(0.0) * x.max(0.0)
         } else {
-            x.max(0.0).sqrt()
+            x.max(0.0)
         }
     }
 
-    /// Value of internal coordinate `u`: `exp u` or `u²` — always inside the domain.
+    /// Value of internal coordinate `u`: `exp u`, `sqrt u` (k) or `u` — inside the domain for
+    /// every `u` at or above the lower bound.
     pub fn from_internal(self, u: f64) -> f64 {
         if self.strictly_positive() {
             u.exp()
+        } else if self == Param::K {
+            u.max(0.0).sqrt()
         } else {
-            u * u
+            u
         }
     }
 
-    /// A start value to use instead of exactly 0 for a non-negative parameter (the square
-    /// transform has zero slope at 0, so a fit started there could never move).
-    pub fn nonzero_start(self) -> f64 {
+    /// The lower bound of the internal coordinate: none (−∞) for `ln x`, 0 for a non-negative
+    /// parameter. The minimizer projects its steps onto `u ≥ bound`.
+    pub fn lower_bound(self) -> f64 {
+        if self.strictly_positive() {
+            f64::NEG_INFINITY
+        } else {
+            0.0
+        }
+    }
+
+    /// The scale of a change that changes the model appreciably, where the value itself gives
+    /// none: the numerical derivatives step by `1e-6·max(|x|, step_scale)`. k acts through
+    /// `N² = n² − k² + 2ink`, so its scale is that of n (1), not its own magnitude; ρ_D and ρ_V
+    /// enter linearly (any step is exact).
+    pub fn step_scale(self) -> f64 {
         match self {
+            Param::K => 1.0,
+            other => other.typical_scale(),
+        }
+    }
+
+    /// A typical magnitude of the parameter: the start used instead of exactly 0 for a
+    /// non-negative parameter (at k = 0 the model is even in k, so the gradient vanishes there
+    /// and a fit started at 0 could never leave it), the scatter of extra starts around 0, and
+    /// the size of change the identifiability check tests where the value is 0.
+    pub fn typical_scale(self) -> f64 {
+        match self {
+            Param::N => 1.0,
             Param::K => 1e-2,
             Param::A => 1.0,
-            _ => 1e-3,
+            Param::B => 1.0,
+            Param::SigmaDeg | Param::TauDeg | Param::OmegaDeg => 1.0,
+            Param::RhoD | Param::RhoV => 1e-3,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Param;
+
+    #[test]
+    fn every_parameter_is_a_material_file_key() {
+        for p in Param::ALL {
+            assert!(polbrdf::model::KEYS.contains(&p.name()), "{}", p.name());
         }
     }
 }

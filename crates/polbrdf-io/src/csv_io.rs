@@ -245,6 +245,41 @@ pub fn fmt_f64(v: f64) -> String {
     format!("{:?}", v + 0.0)
 }
 
+/// The project's one CSV writer: a header, then rows of fields — numbers in shortest
+/// round-trip form ([`fmt_f64`]), text quoted where CSV needs it.
+#[derive(Debug)]
+pub struct CsvTable {
+    w: csv::Writer<Vec<u8>>,
+}
+
+impl CsvTable {
+    /// A table with these column names.
+    pub fn new<S: AsRef<str>>(header: impl IntoIterator<Item = S>) -> Self {
+        let mut t = Self {
+            w: csv::Writer::from_writer(Vec::new()),
+        };
+        t.fields(header);
+        t
+    }
+
+    /// Appends a row of numbers.
+    pub fn row(&mut self, values: &[f64]) {
+        self.fields(values.iter().map(|v| fmt_f64(*v)));
+    }
+
+    /// Appends a row of text fields.
+    pub fn fields<S: AsRef<str>>(&mut self, fields: impl IntoIterator<Item = S>) {
+        self.w
+            .write_record(fields.into_iter().map(|f| f.as_ref().to_string()))
+            .expect("writing to memory cannot fail");
+    }
+
+    /// The document.
+    pub fn into_bytes(self) -> Vec<u8> {
+        self.w.into_inner().expect("writing to memory cannot fail")
+    }
+}
+
 /// The result CSV of `polbrdf eval`: the input columns unchanged, then `brdf, dolp, aolp_deg,
 /// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's pBRDF in `pbrdf`.
 ///
@@ -258,24 +293,17 @@ pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> 
             message: format!("input column `{clash}` has the name of an output column; rename it"),
         });
     }
-    let mut w = csv::Writer::from_writer(Vec::with_capacity(64 * (pbrdf.len() + 1) * 19));
-    let csv_err = |e: csv::Error| Error::File {
-        path: table.path.clone(),
-        message: format!("cannot format output: {e}"),
-    };
-    w.write_record(table.headers.iter().chain(extra.iter()))
-        .map_err(csv_err)?;
+    let mut t = CsvTable::new(table.headers.iter().chain(extra.iter()));
     for (row, f) in table.rows.iter().zip(pbrdf) {
-        let s: Stokes = f.apply(&Stokes::unpolarized());
+        // The reflected Stokes vector for unpolarized input, F·(1, 0, 0, 0): its DoLP and AoLP
+        // as the core defines them.
+        let s: Stokes = f.first_column();
         let mut fields: Vec<String> = row.clone();
-        fields.push(fmt_f64(f.0[0][0]));
+        fields.push(fmt_f64(f.m00()));
         fields.push(fmt_f64(s.dolp()));
         fields.push(fmt_f64(s.aolp().to_degrees()));
-        fields.extend(f.0.iter().flatten().map(|v| fmt_f64(*v)));
-        w.write_record(&fields).map_err(csv_err)?;
+        fields.extend(f.to_row_major().iter().map(|v| fmt_f64(*v)));
+        t.fields(fields);
     }
-    w.into_inner().map_err(|e| Error::File {
-        path: table.path.clone(),
-        message: format!("cannot format output: {e}"),
-    })
+    Ok(t.into_bytes())
 }

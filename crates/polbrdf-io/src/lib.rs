@@ -9,8 +9,8 @@ pub mod material;
 pub mod measurements;
 pub mod write;
 
-pub use csv_io::{parse_geometry_csv, read_geometry_csv, GeometryTable};
+pub use csv_io::{parse_geometry_csv, read_geometry_csv, CsvTable, GeometryTable};
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};
 pub use measurements::{parse_measurements_csv, read_measurements_csv, MeasurementTable};
-pub use write::write_atomic;
+pub use write::{write_atomic, write_files};

@@ -2,27 +2,15 @@
 //! contract), or a preset name.
 
 use crate::error::{Error, Result};
-use polbrdf::{AzimuthTerm, Form, MaterialSpec};
+use polbrdf::model::KeyValue;
+use polbrdf::MaterialSpec;
 use std::collections::BTreeMap;
 use std::path::Path;
 use toml::{Spanned, Value};
 
-/// The keys a material file may hold, in the order [`material_to_toml`] writes them.
-pub const KEYS: &[&str] = &[
-    "name",
-    "n",
-    "k",
-    "sigma_deg",
-    "b",
-    "a",
-    "form",
-    "shadowing",
-    "tau_deg",
-    "omega_deg",
-    "azimuth_term",
-    "rho_d",
-    "rho_v",
-];
+/// The keys a material file may hold, in the order [`material_to_toml`] writes them (the core's
+/// list, [`polbrdf::model::KEYS`]).
+pub use polbrdf::model::KEYS;
 
 /// 1-based line of byte offset `pos` in `text`.
 fn line_of(text: &str, pos: usize) -> usize {
@@ -70,61 +58,23 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
         };
         lines.insert(known, line);
         let v = value.get_ref();
-        let number = || -> Result<f64> {
-            match v {
-                Value::Float(x) => Ok(*x),
-                Value::Integer(i) => Ok(*i as f64),
-                other => Err(field_err(
+        let value = match v {
+            Value::Float(x) => KeyValue::Number(*x),
+            Value::Integer(i) => KeyValue::Number(*i as f64),
+            Value::String(t) => KeyValue::Text(t.clone()),
+            Value::Boolean(b) => KeyValue::Bool(*b),
+            other => {
+                let want = polbrdf::model::spec::expected(known).unwrap_or("a value");
+                return Err(field_err(
                     known,
                     line,
-                    format!("expected a number, got {}", other.type_str()),
-                )),
+                    format!("expected {want}, got {}", other.type_str()),
+                ));
             }
         };
-        let string = || -> Result<&str> {
-            v.as_str().ok_or_else(|| {
-                field_err(
-                    known,
-                    line,
-                    format!("expected a string, got {}", v.type_str()),
-                )
-            })
-        };
-        match known {
-            "name" => spec.name = Some(string()?.to_string()),
-            "n" => {
-                spec.n = number()?;
-                have_n = true;
-            }
-            "k" => spec.k = number()?,
-            "sigma_deg" => spec.sigma_deg = Some(number()?),
-            "b" => spec.b = Some(number()?),
-            "a" => spec.a = Some(number()?),
-            "form" => {
-                spec.form = string()?
-                    .parse::<Form>()
-                    .map_err(|m| field_err(known, line, m))?
-            }
-            "shadowing" => {
-                spec.shadowing = v.as_bool().ok_or_else(|| {
-                    field_err(
-                        known,
-                        line,
-                        format!("expected true or false, got {}", v.type_str()),
-                    )
-                })?
-            }
-            "tau_deg" => spec.tau_deg = number()?,
-            "omega_deg" => spec.omega_deg = number()?,
-            "azimuth_term" => {
-                spec.azimuth_term = string()?
-                    .parse::<AzimuthTerm>()
-                    .map_err(|m| field_err(known, line, m))?
-            }
-            "rho_d" => spec.rho_d = number()?,
-            "rho_v" => spec.rho_v = number()?,
-            _ => unreachable!("every key of KEYS is handled"),
-        }
+        have_n |= known == "n";
+        spec.set(known, value)
+            .map_err(|m| field_err(known, line, m))?;
     }
     if !have_n {
         return Err(Error::File {
@@ -184,31 +134,18 @@ pub fn load_material(arg: &str) -> Result<MaterialSpec> {
     })
 }
 
-/// A material file for `spec` that [`parse_material`] reads back to the same spec.
+/// A material file for `spec` that [`parse_material`] reads back to the same spec: every key
+/// that has a value, in [`KEYS`] order; the name TOML-escaped by the toml crate, numbers in the
+/// shortest round-trip form.
 pub fn material_to_toml(spec: &MaterialSpec) -> String {
-    // Written in KEYS order; the name is TOML-escaped by the toml crate; numbers use the
-    // shortest round-trip form.
-    let mut lines = Vec::new();
-    if let Some(name) = &spec.name {
-        lines.push(format!("name = {}", Value::String(name.clone())));
+    let mut text = String::new();
+    for (key, value) in spec.entries() {
+        let v = match value {
+            KeyValue::Number(x) => format!("{x:?}"),
+            KeyValue::Text(t) => Value::String(t).to_string(),
+            KeyValue::Bool(b) => b.to_string(),
+        };
+        text += &format!("{key} = {v}\n");
     }
-    lines.push(format!("n = {:?}", spec.n));
-    lines.push(format!("k = {:?}", spec.k));
-    if let Some(s) = spec.sigma_deg {
-        lines.push(format!("sigma_deg = {s:?}"));
-    }
-    if let Some(b) = spec.b {
-        lines.push(format!("b = {b:?}"));
-    }
-    if let Some(a) = spec.a {
-        lines.push(format!("a = {a:?}"));
-    }
-    lines.push(format!("form = \"{}\"", spec.form.as_str()));
-    lines.push(format!("shadowing = {}", spec.shadowing));
-    lines.push(format!("tau_deg = {:?}", spec.tau_deg));
-    lines.push(format!("omega_deg = {:?}", spec.omega_deg));
-    lines.push(format!("azimuth_term = \"{}\"", spec.azimuth_term.as_str()));
-    lines.push(format!("rho_d = {:?}", spec.rho_d));
-    lines.push(format!("rho_v = {:?}", spec.rho_v));
-    lines.join("\n") + "\n"
+    text
 }

@@ -48,4 +48,4 @@ pub use plotters::style::RGBColor;
 pub use polar::{
     nice_ceil, ColorScale, Disk, MarkShape, PolarFigure, PolarGrid, PolarMark, PolarPanel,
 };
-pub use render::encode_png;
+pub use render::{encode_png, render_files, Files, Render};

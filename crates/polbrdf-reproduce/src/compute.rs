@@ -1,13 +1,14 @@
-//! The numbers behind every figure, table and claim. Everything goes through the core crate's
-//! call path ([`Material::evaluate`] / [`Material::evaluate_angles`]); the only formulas
-//! written here are the Fresnel-level hypotheses for Table 1's smooth row and the
-//! Kirchhoff-law emission integral, both built on [`RefractiveIndex::amplitudes`] and the
-//! model's own pBRDF.
+//! The numbers behind every figure, table and claim. Every grid goes through the core crate's
+//! batch engine ([`Engine`]: the same functions as [`Material::evaluate`] and
+//! [`Material::evaluate_angles`]); the only formulas written here are the Fresnel-level
+//! hypotheses for Table 1's smooth row and the Kirchhoff-law emission integral, both built on
+//! [`RefractiveIndex::amplitudes`] and the model's own pBRDF.
 
 use crate::params::*;
-use polbrdf::quadrature::gauss_legendre;
+use polbrdf::numeric::quadrature::gauss_legendre;
 use polbrdf::{
-    AngleVariables, Form, Geometry, Material, MaterialSpec, RefractiveIndex, Result as CoreResult,
+    AngleVariables, Engine, Form, Geometry, GeometryBatch, Material, MaterialSpec, Mueller,
+    RefractiveIndex, Result as CoreResult,
 };
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -67,19 +68,27 @@ pub fn fig2() -> CoreResult<Fig2> {
         FIG2_THETA_N_MAX_DEG,
         FIG2_THETA_N_STEP_DEG,
     );
-    let curve = |m: &Material, theta_deg: f64| -> Vec<f64> {
-        theta_n_deg
+    let curve = |m: &Material, theta_deg: f64| -> CoreResult<Vec<f64>> {
+        let vars: Vec<AngleVariables> = theta_n_deg
             .iter()
-            .map(|&tn| {
-                let v = AngleVariables::in_plane_specular(theta_deg.to_radians(), tn.to_radians());
-                m.evaluate_angles(&v).brdf()
-            })
-            .collect()
+            .map(|&tn| AngleVariables::in_plane_specular(theta_deg.to_radians(), tn.to_radians()))
+            .collect();
+        Ok(Engine::new(m)
+            .mueller_of_angles(&vars)?
+            .iter()
+            .map(|f| f[0])
+            .collect())
     };
     Ok(Fig2 {
         thetas_deg: FIG2_THETAS_DEG.to_vec(),
-        brdf: FIG2_THETAS_DEG.iter().map(|&t| curve(&on, t)).collect(),
-        brdf_no_shadow: FIG2_THETAS_DEG.iter().map(|&t| curve(&off, t)).collect(),
+        brdf: FIG2_THETAS_DEG
+            .iter()
+            .map(|&t| curve(&on, t))
+            .collect::<CoreResult<_>>()?,
+        brdf_no_shadow: FIG2_THETAS_DEG
+            .iter()
+            .map(|&t| curve(&off, t))
+            .collect::<CoreResult<_>>()?,
         theta_n_deg,
         a: on.distribution().a(),
         b: on.distribution().b(),
@@ -335,27 +344,55 @@ impl Interpretation {
 
     /// DoLP (fraction) at roughness index `ri` (into `ROUGHNESS`) and angle `theta` (rad).
     pub fn dolp(&self, ri: usize, theta: f64) -> f64 {
+        self.dolp_at(ri, &[theta])[0]
+    }
+
+    /// DoLP (fraction) at roughness index `ri` and each angle of `thetas` (rad), through the
+    /// engine.
+    pub fn dolp_at(&self, ri: usize, thetas: &[f64]) -> Vec<f64> {
         let (r, ref m) = self.materials[ri];
         match (self.how, m) {
-            (Roughness::Emission(n, _), None) => Smooth::Emission.dolp(n, 0.0, theta),
-            (Roughness::Emission(_, _), Some(m)) => {
-                let (rs, rp) = self.quad.hemispherical_rs_rp(m, theta);
-                (rs - rp).abs() / (2.0 - rs - rp)
+            (Roughness::Emission(n, _), None) => thetas
+                .iter()
+                .map(|&t| Smooth::Emission.dolp(n, 0.0, t))
+                .collect(),
+            (Roughness::Emission(_, _), Some(m)) => thetas
+                .iter()
+                .map(|&t| {
+                    let (rs, rp) = self.quad.hemispherical_rs_rp(m, t);
+                    (rs - rp).abs() / (2.0 - rs - rp)
+                })
+                .collect(),
+            (Roughness::ThetaNWithVolume, Some(m)) => {
+                let vars: Vec<AngleVariables> = thetas
+                    .iter()
+                    .map(|&t| AngleVariables::in_plane_specular(t, r))
+                    .collect();
+                Engine::new(m)
+                    .mueller_of_angles(&vars)
+                    .expect("no per-element index")
+                    .iter()
+                    .map(|f| Mueller::from_row_major(f).dolp_unpolarized())
+                    .collect()
             }
-            (Roughness::ThetaNWithVolume, Some(m)) => m
-                .evaluate_angles(&AngleVariables::in_plane_specular(theta, r))
-                .dolp(),
-            (_, Some(m)) => specular(m, theta).dolp(),
-            (_, None) => specular(&self.smooth, theta).dolp(),
+            (_, Some(m)) => specular_dolp(m, thetas),
+            (_, None) => specular_dolp(&self.smooth, thetas),
         }
     }
 }
 
-/// The model at in-plane specular geometry θr = θi = `theta`.
-pub fn specular(m: &Material, theta: f64) -> polbrdf::Evaluation {
-    match Geometry::specular(theta, 0.0) {
-        Ok(g) => m.evaluate(&g),
-        Err(_) => polbrdf::Evaluation::zero(),
+/// The DoLP of the model at in-plane specular geometry θr = θi = θ, at each θ (rad; 0 at or
+/// beyond 90°), through the engine.
+pub fn specular_dolp(m: &Material, thetas: &[f64]) -> Vec<f64> {
+    let t: Vec<f64> = thetas.iter().map(|t| t.clamp(0.0, PI)).collect();
+    let zeros = vec![0.0; t.len()];
+    let pis = vec![PI; t.len()];
+    let (mut brdf, mut dolp) = (vec![0.0; t.len()], vec![0.0; t.len()]);
+    let ok = GeometryBatch::new(&t, &zeros, &t, &pis)
+        .and_then(|b| Engine::new(m).brdf_dolp_into(&b, &mut brdf, &mut dolp));
+    match ok {
+        Ok(()) => dolp,
+        Err(_) => vec![f64::NAN; t.len()],
     }
 }
 
@@ -394,7 +431,8 @@ impl Quadrature {
         let (x, w) = (&self.gl.0, &self.gl.1);
         let width = hi / self.panels as f64;
         let dphi = 2.0 * PI / self.azimuths as f64;
-        let (mut rs, mut rp) = (0.0, 0.0);
+        let mut geoms = Vec::new();
+        let mut weights = Vec::new();
         for p in 0..self.panels {
             let a = p as f64 * width;
             for (xi, wi) in x.iter().zip(w) {
@@ -417,12 +455,18 @@ impl Quadrature {
                     let Ok(g) = Geometry::new(theta, 0.0, tr, pr) else {
                         continue;
                     };
-                    let f = m.pbrdf(&g);
-                    let jac = wr[2] * 4.0 * cb * sn * wt * dphi;
-                    rs += (f.0[0][0] + f.0[0][1]) * jac;
-                    rp += (f.0[0][0] - f.0[0][1]) * jac;
+                    geoms.push(g);
+                    weights.push(wr[2] * 4.0 * cb * sn * wt * dphi);
                 }
             }
+        }
+        let f = Engine::new(m)
+            .pbrdf_of(&geoms)
+            .expect("no per-element index");
+        let (mut rs, mut rp) = (0.0, 0.0);
+        for (f, jac) in f.iter().zip(&weights) {
+            rs += (f[(0, 0)] + f[(0, 1)]) * jac;
+            rp += (f[(0, 0)] - f[(0, 1)]) * jac;
         }
         (rs, rp)
     }
@@ -453,30 +497,26 @@ pub fn dolp_angles_deg() -> Vec<f64> {
 /// `(θ in degrees, DoLP)`.
 pub fn fig3() -> CoreResult<Vec<(f64, f64)>> {
     let m = material(Form::Paper, SMOOTH_SIGMA_DEG, 0.0, 0.0, true)?;
-    Ok(dolp_angles_deg()
-        .into_iter()
-        .map(|t| (t, specular(&m, t.to_radians()).dolp()))
-        .collect())
+    let angles = dolp_angles_deg();
+    let rad: Vec<f64> = angles.iter().map(|t| t.to_radians()).collect();
+    Ok(angles.into_iter().zip(specular_dolp(&m, &rad)).collect())
 }
 
 /// DoLP curves (fractions) of an interpretation, one per roughness value, at `angles_deg`.
 pub fn dolp_curves(it: &Interpretation, angles_deg: &[f64]) -> Vec<Vec<f64>> {
+    let rad: Vec<f64> = angles_deg.iter().map(|t| t.to_radians()).collect();
     (0..ROUGHNESS.len())
-        .map(|ri| {
-            angles_deg
-                .iter()
-                .map(|t| it.dolp(ri, t.to_radians()))
-                .collect()
-        })
+        .map(|ri| it.dolp_at(ri, &rad))
         .collect()
 }
 
 /// DoLP in % at Table 1's cells: `[row][column]`.
 pub fn table_cells(it: &Interpretation) -> [[f64; 5]; 6] {
     let mut out = [[0.0; 5]; 6];
+    let rad: Vec<f64> = TABLE_ANGLES_DEG.iter().map(|t| t.to_radians()).collect();
     for (ri, row) in out.iter_mut().enumerate() {
-        for (cell, t) in row.iter_mut().zip(TABLE_ANGLES_DEG) {
-            *cell = 100.0 * it.dolp(ri, t.to_radians());
+        for (cell, d) in row.iter_mut().zip(it.dolp_at(ri, &rad)) {
+            *cell = 100.0 * d;
         }
     }
     out

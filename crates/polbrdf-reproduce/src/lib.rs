@@ -98,38 +98,38 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
     };
 
     // Fig. 2
-    let mut csv = output::Csv::new(&["theta_deg", "thetaN_deg", "brdf"]);
+    let mut csv = polbrdf_io::CsvTable::new(["theta_deg", "thetaN_deg", "brdf"]);
     for (t, c) in a.fig2.thetas_deg.iter().zip(&a.fig2.brdf) {
         for (tn, f) in a.fig2.theta_n_deg.iter().zip(c) {
             csv.row(&[*t, *tn, *f]);
         }
     }
-    let mut new = vec![write(dir, "fig2.csv", csv.as_bytes())?];
+    let mut new = vec![write(dir, "fig2.csv", &csv.into_bytes())?];
     new.extend(render(&figures::fig2(&a), dir, "fig2")?);
     step("Fig. 2 written", &mut files, new);
 
     // Fig. 3
-    let mut csv = output::Csv::new(&["theta_deg", "dolp"]);
+    let mut csv = polbrdf_io::CsvTable::new(["theta_deg", "dolp"]);
     for &(t, d) in &a.fig3 {
         csv.row(&[t, d]);
     }
-    let mut new = vec![write(dir, "fig3.csv", csv.as_bytes())?];
+    let mut new = vec![write(dir, "fig3.csv", &csv.into_bytes())?];
     new.extend(render(&figures::fig3(&a), dir, "fig3")?);
     step("Fig. 3 written", &mut files, new);
 
     // Fig. 4
-    let mut csv = output::Csv::new(&["theta_deg", "roughness", "dolp"]);
+    let mut csv = polbrdf_io::CsvTable::new(["theta_deg", "roughness", "dolp"]);
     for (r, c) in ROUGHNESS.iter().zip(&a.fig4) {
         for (t, d) in a.dolp_angles.iter().zip(c) {
             csv.row(&[*t, *r, *d]);
         }
     }
-    let mut new = vec![write(dir, "fig4.csv", csv.as_bytes())?];
+    let mut new = vec![write(dir, "fig4.csv", &csv.into_bytes())?];
     new.extend(render(&figures::fig4(&a), dir, "fig4")?);
     step("Fig. 4 written", &mut files, new);
 
     // Table 1 and Fig. 5
-    let mut csv = output::Csv::new(&[
+    let mut csv = polbrdf_io::CsvTable::new([
         "roughness",
         "theta_deg",
         "dolp_model_pct",
@@ -147,7 +147,7 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
             csv.row(&[*r, *t, ours, pm, pl, round6(ours - pm), round6(ours - pl)]);
         }
     }
-    let mut new = vec![write(dir, "table1.csv", csv.as_bytes())?];
+    let mut new = vec![write(dir, "table1.csv", &csv.into_bytes())?];
     new.extend(render(&figures::fig5(&a), dir, "fig5")?);
     step("Table 1 and Fig. 5 written", &mut files, new);
 
@@ -167,13 +167,12 @@ fn render(
     dir: &std::path::Path,
     stem: &str,
 ) -> Result<Vec<PathBuf>, Error> {
-    let png = dir.join(format!("{stem}.png"));
-    let bytes = fig.png().map_err(|e| Error::from_plot(e, &png))?;
-    output::write_atomic(&png, &bytes)?;
-    let svg = dir.join(format!("{stem}.svg"));
-    let text = fig.svg().map_err(|e| Error::from_plot(e, &svg))?;
-    output::write_atomic(&svg, text.as_bytes())?;
-    Ok(vec![png, svg])
+    let files = polbrdf_plot::render_files(&[(stem, fig)])
+        .map_err(|(name, e)| Error::from_plot(e, &dir.join(name)))?;
+    files
+        .iter()
+        .map(|(name, bytes)| write(dir, name, bytes))
+        .collect()
 }
 
 fn write(dir: &std::path::Path, name: &str, bytes: &[u8]) -> Result<PathBuf, Error> {

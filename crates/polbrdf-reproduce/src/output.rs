@@ -54,32 +54,3 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
         },
     })
 }
-
-/// A CSV document built row by row (numbers only, comma-separated, header first).
-pub struct Csv {
-    text: String,
-}
-
-impl Csv {
-    /// Starts a document with the given header columns.
-    pub fn new(header: &[&str]) -> Self {
-        let mut text = header.join(",");
-        text.push('\n');
-        Self { text }
-    }
-
-    /// Appends one row; every value in shortest round-trip form (`polbrdf_io::csv_io::fmt_f64`).
-    pub fn row(&mut self, values: &[f64]) {
-        let cells: Vec<String> = values
-            .iter()
-            .map(|v| polbrdf_io::csv_io::fmt_f64(*v))
-            .collect();
-        self.text.push_str(&cells.join(","));
-        self.text.push('\n');
-    }
-
-    /// The document.
-    pub fn as_bytes(&self) -> &[u8] {
-        self.text.as_bytes()
-    }
-}

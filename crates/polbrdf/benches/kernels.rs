@@ -4,13 +4,13 @@
 //!
 //! - `reference_*`: the straightforward scalar path (`Geometry::angle_variables`, the Fresnel
 //!   amplitudes with the Jones and Mueller matrices, `Material::evaluate`);
-//! - `kernel_*`: the vectorized batch kernel (`polbrdf::kernel`), at each SIMD level this CPU
+//! - `kernel_*`: the vectorized batch kernel (`polbrdf::engine`), at each SIMD level this CPU
 //!   supports (an unsupported level measures nothing);
 //! - `single_*`: the latency of one evaluation.
 
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
-use polbrdf::kernel::{Kernel, SimdLevel};
+use polbrdf::engine::{Kernel, SimdLevel};
 use polbrdf::{AngleVariables, Geometry, GeometryBatch, Jones, Material, Mueller};
 
 fn main() {

@@ -1,10 +1,10 @@
-//! The core's error type.
+//! The core's error type. A leaf module: it imports nothing from the crate.
 
 /// Everything the core can refuse. Each variant names the offending quantity and its value.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A material/model parameter is outside its physical domain (spec §2, §4).
+    /// A material/model parameter is outside its physical domain (docs/model.md §8).
     #[error("invalid parameter `{name}` = {}: {reason}", show(*value))]
     InvalidParameter {
         /// The parameter's name as the user spells it (e.g. `sigma_deg`, `n`).
@@ -14,17 +14,34 @@ pub enum Error {
         /// What the parameter must satisfy.
         reason: &'static str,
     },
-    /// A direction angle is NaN/∞ or outside its range (spec §1).
-    #[error("invalid angle `{name}` = {}{}: {reason}", show(*value), index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
-    InvalidAngle {
-        /// `theta_i`, `phi_i`, `theta_r` or `phi_r` (with `_deg` when given in degrees).
+    /// One element of a batch of parameters (e.g. a per-element refractive index) is outside
+    /// its domain.
+    #[error("invalid parameter `{name}` = {} (at index {index}): {reason}", show(*value))]
+    InvalidParameterAt {
+        /// The parameter's name (`n`, `k`, `wavelength_um`, …).
         name: &'static str,
-        /// The value that was given, in the unit the name implies.
+        /// The value that was given.
         value: f64,
+        /// Its position in the batch.
+        index: usize,
+        /// What the parameter must satisfy.
+        reason: &'static str,
+    },
+    /// A direction angle is NaN/∞ or outside its range (docs/model.md §1).
+    #[error("invalid angle `{name}` = {}{}: {}", show(*value),
+            index.map(|i| format!(" (at index {i})")).unwrap_or_default(), problem.reason(*degrees))]
+    InvalidAngle {
+        /// The angle's name as the caller spells it: `theta_i`, `phi_r`, `sun_zenith`, …, with
+        /// `_deg` when it was given in degrees.
+        name: &'static str,
+        /// The value that was given, in the caller's unit.
+        value: f64,
+        /// Whether `value` (and `name`) are in degrees.
+        degrees: bool,
         /// Position in a batch, when the angle came from one.
         index: Option<usize>,
-        /// What the angle must satisfy.
-        reason: &'static str,
+        /// What is wrong with it.
+        problem: AngleProblem,
     },
     /// Two parameters that exclude each other were both given, or a required one is missing.
     #[error("{0}")]
@@ -40,8 +57,41 @@ pub enum Error {
         expected: usize,
     },
     /// A name was given that is not a known preset material.
-    #[error("unknown material preset `{0}` (known: {known})", known = crate::presets::names().join(", "))]
-    UnknownPreset(String),
+    #[error("unknown material preset `{name}` (known: {known})")]
+    UnknownPreset {
+        /// The name that was asked for.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
+}
+
+/// What is wrong with an angle ([`Error::InvalidAngle`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AngleProblem {
+    /// NaN or ±∞.
+    NotFinite,
+    /// A zenith angle outside [0°, 180°].
+    ZenithRange,
+    /// A source at or below the horizon where one above it is needed.
+    SourceBelowHorizon,
+}
+
+impl AngleProblem {
+    /// The rule the angle breaks, in the unit of the value.
+    pub fn reason(self, degrees: bool) -> &'static str {
+        match (self, degrees) {
+            (AngleProblem::NotFinite, _) => "must be finite",
+            (AngleProblem::ZenithRange, true) => "zenith angle must lie in [0°, 180°]",
+            (AngleProblem::ZenithRange, false) => {
+                "zenith angle must lie in [0, π] rad ([0°, 180°])"
+            }
+            (AngleProblem::SourceBelowHorizon, _) => {
+                "the source must be above the horizon: 0 ≤ zenith angle < 90°"
+            }
+        }
+    }
 }
 
 /// A value as a message shows it: plainly (`200`, `-1.5`) in the ordinary range, in exponent

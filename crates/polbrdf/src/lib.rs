@@ -4,12 +4,22 @@
 //! exactly as pinned by the project's `docs/model.md`. Equation numbers in the documentation are
 //! the paper's. The library works in radians; files and the command line use degrees.
 //!
-//! One call path leads to every number:
-//! [`Geometry`] → [`Geometry::angle_variables`] (θN, β, ΦN, η_i, η_r; spec §1, §3) →
-//! [`Material::evaluate_angles`]: [`Distribution::eval`] (eq. 4) × [`Fresnel::reflectance`]
-//! (eq. 1) × [`Shadowing::eval`] (eq. 3) → surface term (eq. 1 or 6), [`Jones::microfacet`]
-//! (eq. 11) → [`Mueller::from_jones`] → `F` (eq. 9 corrected), [`Mueller::apply`] (eq. 12),
-//! [`Stokes::dolp`] (eq. 13).
+//! The crate is layered; each layer imports only those above it in this list:
+//!
+//! | layer | holds |
+//! |---|---|
+//! | [`error`] | the error type (a leaf) |
+//! | [`numeric`] | elementary-function backends, quadrature, linear algebra, the random generator |
+//! | [`optics`] | Stokes, Mueller, Jones, Fresnel — the psps basis and its conventions |
+//! | [`geometry`] | directions, a geometry, the angle variables in closed form, batches of geometries |
+//! | [`model`] | parameters and their validation, D, SO, the surface and volume terms, the one-geometry evaluation |
+//! | [`engine`] | the batch engine: the same formulas over blocks, vectorized, in parallel |
+//! | [`analysis`] | albedo, physical validity, target-versus-background contrast — all on the engine |
+//!
+//! One call path leads to every number: [`Material::evaluate`] (the readable one-geometry path,
+//! with every intermediate) calls one function per equation — its module documentation
+//! ([`model::material`]) lists them — and the engine ([`engine::Engine`]) calls the same
+//! functions across blocks.
 //!
 //! ```
 //! use polbrdf::{Geometry, MaterialSpec};
@@ -23,37 +33,31 @@
 
 #![warn(missing_docs)]
 
-pub mod albedo;
-pub mod batch;
-pub mod check;
-pub mod contrast;
-pub mod distribution;
+pub mod analysis;
+pub mod engine;
 pub mod error;
-pub mod fresnel;
 pub mod geometry;
-pub mod jones;
-pub mod kernel;
-pub mod linalg;
 pub mod model;
-pub mod mueller;
-pub mod presets;
-pub mod quadrature;
-pub mod sample;
-pub mod shadowing;
+pub mod numeric;
+pub mod optics;
 
-pub use albedo::{directional_hemispherical, Albedo};
-pub use batch::GeometryBatch;
-pub use check::{physical_validity, CheckGrid, ValidityReport};
-pub use contrast::{Contrast, ContrastSample, Illumination, RankOptions, Ranking, ViewGrid};
-pub use distribution::Distribution;
-pub use error::{Error, Result};
-pub use fresnel::{Fresnel, RefractiveIndex};
-pub use geometry::{AngleVariables, Geometry};
-pub use jones::Jones;
-pub use model::{Evaluation, Form, Material, MaterialSpec, SurfaceTerms};
-pub use mueller::{Mueller, Stokes};
-pub use presets::preset;
-pub use shadowing::{AzimuthTerm, Shadowing};
+pub use analysis::{
+    directional_hemispherical, physical_validity, Albedo, CheckGrid, Contrast, ContrastSample,
+    Illumination, RankOptions, Ranking, ValidityReport, ViewGrid,
+};
+pub use engine::batch;
+pub use engine::{Engine, IndexColumns};
+pub use error::{AngleProblem, Error, Result};
+pub use geometry::{AngleVariables, Geometry, GeometryBatch};
+pub use model::presets::{self, preset};
+pub use model::{
+    AzimuthTerm, Distribution, Evaluation, Form, Material, MaterialSpec, Shadowing, SurfaceTerms,
+};
+pub use numeric::sample;
+pub use optics::fresnel::{Fresnel, RefractiveIndex};
+pub use optics::jones::Jones;
+pub use optics::mueller::Mueller;
+pub use optics::stokes::Stokes;
 
 /// The README's code blocks, compiled and run as doctests.
 #[cfg(doctest)]

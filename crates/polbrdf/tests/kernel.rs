@@ -1,11 +1,12 @@
-//! The fast batch kernel (`polbrdf::kernel`) against the reference path
+//! The fast batch kernel (`polbrdf::engine`) against the reference path
 //! (`Material::evaluate`): every entry of F within 1e-12·F00, the BRDF within 1e-12 relative and
 //! the DoLP within 1e-12 absolute — on every test vector and on random inputs across materials
 //! and geometries (degenerate ones included), at every SIMD level this CPU supports.
 
 use crate::common::{cases, f, spec_of};
-use polbrdf::batch::{self, GeometryBatch};
-use polbrdf::kernel::{Kernel, SimdLevel};
+use polbrdf::batch;
+use polbrdf::engine::{Kernel, SimdLevel};
+use polbrdf::GeometryBatch;
 use polbrdf::{
     AzimuthTerm, Form, Fresnel, Geometry, Jones, Material, MaterialSpec, Mueller, RefractiveIndex,
 };
@@ -502,4 +503,104 @@ fn batch_results_do_not_depend_on_the_thread_count() {
         .install(|| batch::mueller(&m, &batch).unwrap());
     let many = batch::mueller(&m, &batch).unwrap();
     assert!(one == many);
+}
+
+#[test]
+fn per_element_index_matches_the_one_geometry_path_of_each_index() {
+    // One call over materials × wavelengths × geometries: element j with its own N_j.
+    use polbrdf::engine::{Engine, IndexColumns};
+    let mut rng = Rng::new(31);
+    for _ in 0..40 {
+        let spec = random_material(&mut rng);
+        let m = spec.build().unwrap();
+        let n_el = 700;
+        let geoms: Vec<[f64; 4]> = (0..n_el).map(|_| random_geometry(&mut rng)).collect();
+        let cols = columns(&geoms);
+        let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
+        // A few indices, as a sweep over wavelengths has them: blocks of equal and of mixed N.
+        let table: Vec<(f64, f64)> = (0..5)
+            .map(|_| match rng.below(3) {
+                0 => (rng.range(1.2, 2.5), 0.0),
+                1 => (rng.range(0.1, 3.0), rng.range(0.5, 8.0)),
+                _ => (rng.range(1.3, 1.8), 10f64.powf(rng.range(-4.0, -1.0))),
+            })
+            .collect();
+        let pick: Vec<usize> = (0..n_el)
+            .map(|j| if j < 300 { j / 64 % 5 } else { rng.below(5) })
+            .collect();
+        let n: Vec<f64> = pick.iter().map(|&i| table[i].0).collect();
+        let k: Vec<f64> = pick.iter().map(|&i| table[i].1).collect();
+        let engine = Engine::new(&m).with_index(IndexColumns::new(&n, &k).unwrap());
+        let out = engine.mueller(&batch).unwrap();
+        let (mut b, mut d) = (vec![0.0; n_el], vec![0.0; n_el]);
+        engine.brdf_dolp_into(&batch, &mut b, &mut d).unwrap();
+        for j in 0..n_el {
+            let idx = RefractiveIndex::new(n[j], k[j]).unwrap();
+            let e = m.with_index(idx).evaluate(&batch.get(j));
+            let dev = deviation(&out[j], &e.pbrdf.to_row_major());
+            assert!(
+                dev <= TOL,
+                "element {j} {:?} N = {idx:?}: {dev:e}",
+                geoms[j]
+            );
+            assert!(brdf_dolp_deviation(b[j], d[j], e.brdf(), e.dolp()) <= TOL);
+            assert_eq!(b[j].to_bits(), out[j][0].to_bits());
+        }
+    }
+}
+
+#[test]
+fn prepared_geometry_gives_exactly_the_unprepared_results() {
+    use polbrdf::engine::{Engine, IndexColumns};
+    let mut rng = Rng::new(41);
+    for _ in 0..60 {
+        let m = random_material(&mut rng).build().unwrap();
+        let n_el = 1 + rng.below(3000);
+        let geoms: Vec<[f64; 4]> = (0..n_el).map(|_| random_geometry(&mut rng)).collect();
+        let cols = columns(&geoms);
+        let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
+        for level in SimdLevel::supported() {
+            let k = Kernel::with_level(&m, level).unwrap();
+            let prepared = k.prepare(&batch);
+            assert_eq!(prepared.len(), n_el);
+            let (mut a, mut p) = (vec![[0.0; 16]; n_el], vec![[0.0; 16]; n_el]);
+            k.mueller_into(&batch, 0, &mut a);
+            k.mueller_prepared_into(&prepared, 0, &mut p);
+            assert!(a == p, "{}", level.name());
+            let (mut b1, mut d1, mut b2, mut d2) = (
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+            );
+            k.brdf_dolp_into(&batch, 0, &mut b1, &mut d1);
+            k.brdf_dolp_prepared_into(&prepared, 0, &mut b2, &mut d2);
+            assert!(b1 == b2 && d1 == d2, "{}", level.name());
+        }
+        // The parallel engine, and one prepared batch serving another material and an index.
+        let e = Engine::new(&m);
+        let prepared = e.prepare(&batch);
+        let other = random_material(&mut rng).build().unwrap();
+        let n: Vec<f64> = (0..n_el).map(|_| rng.range(1.2, 2.0)).collect();
+        let kk: Vec<f64> = (0..n_el).map(|_| rng.range(0.0, 0.5)).collect();
+        for engine in [
+            Engine::new(&other),
+            Engine::new(&other).with_index(IndexColumns::new(&n, &kk).unwrap()),
+        ] {
+            let mut p = vec![[0.0; 16]; n_el];
+            engine.mueller_prepared_into(&prepared, &mut p).unwrap();
+            assert!(engine.mueller(&batch).unwrap() == p);
+            let (mut b1, mut d1, mut b2, mut d2) = (
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+                vec![0.0; n_el],
+            );
+            engine.brdf_dolp_into(&batch, &mut b1, &mut d1).unwrap();
+            engine
+                .brdf_dolp_prepared_into(&prepared, &mut b2, &mut d2)
+                .unwrap();
+            assert!(b1 == b2 && d1 == d2);
+        }
+    }
 }

@@ -4,6 +4,7 @@ mod albedo;
 mod bounds;
 mod common;
 mod contrast;
+mod golden;
 mod kernel;
 mod limits;
 mod properties;

@@ -439,7 +439,7 @@ proptest! {
 }
 
 fn check_batch(m: &Material, batch: &GeometryBatch<'_>) -> Result<(), TestCaseError> {
-    // The batch API runs the vectorized kernel (`polbrdf::kernel`): the same equations as
+    // The batch API runs the vectorized kernel (`polbrdf::engine`): the same equations as
     // `Material::evaluate`, to within 1e-12·F00 (tests/kernel.rs checks it in depth).
     let got = mueller(m, batch).unwrap();
     let mut brdf = vec![f64::NAN; batch.len()];

@@ -1,91 +1,19 @@
-//! Mueller matrices and Stokes vectors in the psps basis (spec §2–3, §5; eqs. 7–9, 12–13).
+//! Mueller matrices in the psps basis (docs/model.md §2, §4, §6; eqs. 7–9, 12).
+//!
+//! A Mueller matrix `M` maps the Stokes vector of the incident beam, in the incident beam's psps
+//! frame, to the Stokes vector of the outgoing beam in the outgoing beam's frame:
+//! `S_out = M·S_in` (eq. 12). A pBRDF `F` is such a matrix in sr⁻¹. Both frames follow
+//! [`crate::optics::stokes`]; so the mirror at normal incidence is `R_F·diag(1, 1, −1, −1)` here,
+//! not the identity (the reflected frame's s axis is the incident one's, its p axis reversed).
 
-use crate::jones::Jones;
+use crate::numeric::math::Math;
+use crate::optics::jones::Jones;
+use crate::optics::stokes::Stokes;
 use num_complex::Complex64;
-use std::ops::{Add, Mul};
+use std::ops::{Add, Index, IndexMut, Mul};
 
-/// A Stokes vector `(S0, S1, S2, S3)`, psps basis: `S0 = |Es|²+|Ep|²`, `S1 = |Es|²−|Ep|²`,
-/// `S2 = 2Re(Es Ep*)`, `S3 = −2Im(Es Ep*)`; `(1, 1, 0, 0)` is s-polarized (spec §2).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stokes(pub [f64; 4]);
-
-impl Stokes {
-    /// Unpolarized light of unit intensity, `(1, 0, 0, 0)`.
-    pub fn unpolarized() -> Self {
-        Self([1.0, 0.0, 0.0, 0.0])
-    }
-
-    /// Fully linearly polarized light of unit intensity at angle `psi` (rad) from the s axis
-    /// toward the p axis: `(1, cos2ψ, sin2ψ, 0)`.
-    pub fn linear(psi: f64) -> Self {
-        let (s, c) = (2.0 * psi).sin_cos();
-        Self([1.0, c, s, 0.0])
-    }
-
-    /// s-polarized light, `(1, 1, 0, 0)`.
-    pub fn s_polarized() -> Self {
-        Self([1.0, 1.0, 0.0, 0.0])
-    }
-
-    /// p-polarized light, `(1, −1, 0, 0)`.
-    pub fn p_polarized() -> Self {
-        Self([1.0, -1.0, 0.0, 0.0])
-    }
-
-    /// Fully circularly polarized light of unit intensity, `(1, 0, 0, ±1)`.
-    pub fn circular(sign: f64) -> Self {
-        Self([1.0, 0.0, 0.0, sign.signum()])
-    }
-
-    /// The Stokes vector of a Jones vector `(E_s, E_p)` (spec §2).
-    pub fn from_field(es: Complex64, ep: Complex64) -> Self {
-        let x = es * ep.conj();
-        Self([
-            es.norm_sqr() + ep.norm_sqr(),
-            es.norm_sqr() - ep.norm_sqr(),
-            2.0 * x.re,
-            -2.0 * x.im,
-        ])
-    }
-
-    /// Intensity S0.
-    pub fn intensity(&self) -> f64 {
-        self.0[0]
-    }
-
-    /// Degree of linear polarization `sqrt(S1² + S2²)/S0` (eq. 13); 0 when `S0 ≤ 0`.
-    pub fn dolp(&self) -> f64 {
-        ratio(self.0[1].hypot(self.0[2]), self.0[0])
-    }
-
-    /// Degree of polarization `sqrt(S1² + S2² + S3²)/S0`; 0 when `S0 ≤ 0`.
-    pub fn dop(&self) -> f64 {
-        let [s0, s1, s2, s3] = self.0;
-        // hypot: squares of a tiny (or huge) radiance would underflow (overflow).
-        ratio(s1.hypot(s2).hypot(s3), s0)
-    }
-
-    /// Degree of circular polarization `S3/S0`; 0 when `S0 ≤ 0`.
-    pub fn docp(&self) -> f64 {
-        ratio(self.0[3], self.0[0])
-    }
-
-    /// Angle of linear polarization `½·atan2(S2, S1)` (rad, in (−π/2, π/2], measured from the
-    /// s axis toward the p axis); 0 for light with no linear polarization.
-    pub fn aolp(&self) -> f64 {
-        0.5 * self.0[2].atan2(self.0[1])
-    }
-}
-
-fn ratio(num: f64, den: f64) -> f64 {
-    if den > 0.0 {
-        num / den
-    } else {
-        0.0
-    }
-}
-
-/// A real 4×4 Mueller matrix (or pBRDF, in sr⁻¹), row-major, psps basis.
+/// A real 4×4 Mueller matrix (or pBRDF, in sr⁻¹), row-major, psps basis. `m[(i, j)]` is the
+/// entry of row `i` (output component `S_i`) and column `j` (input component `S_j`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mueller(pub [[f64; 4]; 4]);
 
@@ -116,7 +44,9 @@ impl Mueller {
     }
 
     /// Mueller matrix of the frame rotation `Jones::rotation(x)`:
-    /// `[[1,0,0,0],[0,cos2x,−sin2x,0],[0,sin2x,cos2x,0],[0,0,0,1]]`.
+    /// `[[1,0,0,0],[0,cos2x,−sin2x,0],[0,sin2x,cos2x,0],[0,0,0,1]]`. It maps Stokes components
+    /// given in a frame turned by `x` (from s toward p) back into the original frame: the
+    /// linear polarization turns by `+x` (its AoLP grows by `x`), S0 and S3 are unchanged.
     pub fn rotator(x: f64) -> Self {
         let (s, c) = (2.0 * x).sin_cos();
         Self([
@@ -128,7 +58,9 @@ impl Mueller {
     }
 
     /// Bohren & Huffman's Mueller matrix of a Jones matrix, `M = A (T ⊗ T*) A⁻¹` with
-    /// `A = [[1,0,0,1],[1,0,0,−1],[0,1,1,0],[0,i,−i,0]]` (spec §3), written out entry by entry.
+    /// `A = [[1,0,0,1],[1,0,0,−1],[0,1,1,0],[0,i,−i,0]]` (docs/model.md §4; Bohren & Huffman,
+    /// *Absorption and Scattering of Light by Small Particles*, 1983, §3.3), written out entry by
+    /// entry. The sign of row/column 3 follows `S3 = −2Im(E_s E_p*)`.
     /// With `T = [[a, b], [c, d]]`:
     /// `M00 = ½(|a|²+|b|²+|c|²+|d|²)`, `M02 = Re(ab* + cd*)`, `M30 = −Im(ac* + bd*)`, …
     pub fn from_jones(t: &Jones) -> Self {
@@ -163,6 +95,36 @@ impl Mueller {
         self.0[row][col]
     }
 
+    /// `F00`: the scalar BRDF of a pBRDF (the output intensity for unit unpolarized input).
+    pub fn m00(&self) -> f64 {
+        self.0[0][0]
+    }
+
+    /// The first column `(M00, M10, M20, M30)`: the output for unpolarized input of unit
+    /// intensity.
+    pub fn first_column(&self) -> Stokes {
+        Stokes([self.0[0][0], self.0[1][0], self.0[2][0], self.0[3][0]])
+    }
+
+    /// The first row `(M00, M01, M02, M03)`: the output intensity for each input component.
+    pub fn first_row(&self) -> [f64; 4] {
+        self.0[0]
+    }
+
+    /// From 16 entries in row-major order.
+    pub fn from_row_major(v: &[f64; 16]) -> Self {
+        Self(std::array::from_fn(|r| {
+            std::array::from_fn(|c| v[4 * r + c])
+        }))
+    }
+
+    /// The transpose.
+    pub fn transpose(&self) -> Self {
+        Self(std::array::from_fn(|r| {
+            std::array::from_fn(|c| self.0[c][r])
+        }))
+    }
+
     /// Every entry multiplied by `s`.
     pub fn scaled(&self, s: f64) -> Self {
         let mut m = self.0;
@@ -191,7 +153,7 @@ impl Mueller {
     /// DoLP of the output for unpolarized input, `sqrt(F10² + F20²)/F00` (eq. 13); 0 when
     /// `F00 = 0`.
     pub fn dolp_unpolarized(&self) -> f64 {
-        self.apply(&Stokes::unpolarized()).dolp()
+        self.first_column().dolp()
     }
 
     /// The 4×4 Hermitian coherency (Cloude) matrix `C`, obtained by reshuffling
@@ -257,7 +219,7 @@ impl Mueller {
                 m[p + 4][q] = c[p][q].im;
             }
         }
-        let (mut ev, _) = crate::linalg::symmetric_eigen(m);
+        let (mut ev, _) = crate::numeric::linalg::symmetric_eigen(m);
         ev.sort_by(f64::total_cmp);
         [ev[0], ev[2], ev[4], ev[6]].map(|v| v * scale)
     }
@@ -298,4 +260,80 @@ impl Mul<Stokes> for Mueller {
     fn mul(self, rhs: Stokes) -> Stokes {
         self.apply(&rhs)
     }
+}
+
+impl Index<(usize, usize)> for Mueller {
+    type Output = f64;
+    fn index(&self, (r, c): (usize, usize)) -> &f64 {
+        &self.0[r][c]
+    }
+}
+
+impl IndexMut<(usize, usize)> for Mueller {
+    fn index_mut(&mut self, (r, c): (usize, usize)) -> &mut f64 {
+        &mut self.0[r][c]
+    }
+}
+
+/// The coefficients of the Mueller matrix of `diag(rs, rp)` (a diattenuating retarder aligned
+/// with s and p): `M_d = [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, S], [0, 0, −S, C]]` with
+/// `A = (|rs|² + |rp|²)/2`, `B = (|rs|² − |rp|²)/2`, `C + iS = rs·rp*` — [`Mueller::from_jones`]
+/// of the diagonal matrix. Takes `|rs|²`, `|rp|²` and the real and imaginary parts of rs, rp.
+#[inline(always)]
+pub fn diagonal_coefficients<M: Math>(
+    rs2: f64,
+    rp2: f64,
+    [rs_r, rs_i, rp_r, rp_i]: [f64; 4],
+) -> [f64; 4] {
+    let [a, b] = intensity_coefficients(rs2, rp2);
+    [
+        a,
+        b,
+        M::mla(rs_r, rp_r, rs_i * rp_i),
+        M::mla(rs_i, rp_r, -(rs_r * rp_i)),
+    ]
+}
+
+/// `[A, B] = [(|rs|² + |rp|²)/2, (|rs|² − |rp|²)/2]`: the first two coefficients of
+/// [`diagonal_coefficients`], all that the intensity and the linear polarization for
+/// unpolarized input need (`A = R_F`, eq. 1).
+#[inline(always)]
+pub fn intensity_coefficients(rs2: f64, rp2: f64) -> [f64; 2] {
+    [0.5 * (rs2 + rp2), 0.5 * (rs2 - rp2)]
+}
+
+/// The model's pBRDF, row-major (docs/model.md §6, §12):
+/// `F = R(η_r)·(g·M_d)·R(−η_i) + f_v·diag(1, 0, 0, 0)`, the Mueller matrix of
+/// `T = Rot(η_r)·diag(rs, rp)·Rot(−η_i)` (eq. 11) scaled by `g = f_s/M00`, plus the unpolarized
+/// volume term (eq. 9 corrected).
+///
+/// `gm = [g·A, g·B, g·C, g·S]` ([`diagonal_coefficients`] times g); `rot` = `[cos2η_i, sin2η_i,
+/// cos2η_r, sin2η_r]` ([`crate::geometry::angles::rotations`]); `R` is [`Mueller::rotator`].
+/// That this equals [`Mueller::from_jones`] of T is tested.
+#[inline(always)]
+pub fn facet_pbrdf<M: Math>(gm: [f64; 4], fv: f64, rot: [f64; 4]) -> [f64; 16] {
+    let [ga, gb, gc, gs] = gm;
+    let [ci2, si2, cr2, sr2] = rot;
+    let p1 = ga * ci2;
+    let p2 = ga * si2;
+    let q1 = gc * si2;
+    let q2 = gc * ci2;
+    [
+        ga + fv,
+        gb * ci2,
+        gb * si2,
+        0.0,
+        cr2 * gb,
+        M::mla(cr2, p1, sr2 * q1),
+        M::mla(cr2, p2, -(sr2 * q2)),
+        -(sr2 * gs),
+        sr2 * gb,
+        M::mla(sr2, p1, -(cr2 * q1)),
+        M::mla(sr2, p2, cr2 * q2),
+        cr2 * gs,
+        0.0,
+        gs * si2,
+        -(gs * ci2),
+        gc,
+    ]
 }

@@ -29,10 +29,11 @@
 //! better one (greedy non-maximum suppression), then optionally refined by brute force around
 //! its grid node.
 
-use crate::error::{Error, Result};
+use crate::engine::{Engine, Kernel};
+use crate::error::{AngleProblem, Error, Result};
 use crate::geometry::{direction, Geometry};
 use crate::model::Material;
-use crate::mueller::Stokes;
+use crate::optics::stokes::Stokes;
 use rayon::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -56,7 +57,7 @@ impl Illumination {
     /// horizon, a negative zenith or a non-finite angle; [`Error::InvalidParameter`] (`stokes`)
     /// for a non-finite vector, `S0 ≤ 0` or a degree of polarization above 1.
     pub fn new(theta_i: f64, phi_i: f64, stokes: Stokes) -> Result<Self> {
-        Self::named(theta_i, phi_i, stokes, ("sun_zenith", "sun_azimuth"), 1.0)
+        Self::named(theta_i, phi_i, stokes, ("sun_zenith", "sun_azimuth"), false)
     }
 
     /// As [`Illumination::new`] with the angles in degrees; errors name `sun_zenith_deg` and
@@ -70,7 +71,7 @@ impl Illumination {
             sun_azimuth_deg.to_radians(),
             stokes,
             ("sun_zenith_deg", "sun_azimuth_deg"),
-            180.0 / PI,
+            true,
         )
     }
 
@@ -79,22 +80,25 @@ impl Illumination {
         phi_i: f64,
         stokes: Stokes,
         (zenith, azimuth): (&'static str, &'static str),
-        unit: f64,
+        degrees: bool,
     ) -> Result<Self> {
+        let unit = if degrees { 180.0 / PI } else { 1.0 };
         if !theta_i.is_finite() || !(0.0..FRAC_PI_2).contains(&theta_i) {
             return Err(Error::InvalidAngle {
                 name: zenith,
                 value: theta_i * unit,
+                degrees,
                 index: None,
-                reason: "the source must be above the horizon: 0 ≤ zenith angle < 90°",
+                problem: AngleProblem::SourceBelowHorizon,
             });
         }
         if !phi_i.is_finite() {
             return Err(Error::InvalidAngle {
                 name: azimuth,
                 value: phi_i * unit,
+                degrees,
                 index: None,
-                reason: "must be finite",
+                problem: AngleProblem::NotFinite,
             });
         }
         Ok(Self {
@@ -140,7 +144,7 @@ fn normalized_stokes(s: Stokes) -> Result<Stokes> {
     if let Some(v) = s.0.iter().find(|v| !v.is_finite()) {
         return bad(*v, "every Stokes component must be finite");
     }
-    let s0 = s.0[0];
+    let s0 = s.s0();
     if s0 <= 0.0 {
         return bad(s0, "S0 (the intensity) must be > 0");
     }
@@ -260,27 +264,23 @@ pub struct ViewSample {
     pub stokes: Stokes,
 }
 
-/// Evaluates one material over the grid (in parallel): the hemispherical map of its BRDF and
-/// reflected Stokes vector.
+/// Evaluates one material over the grid (through the engine, in parallel): the hemispherical
+/// map of its BRDF and reflected Stokes vector.
 pub fn hemisphere(material: &Material, light: &Illumination, grid: &ViewGrid) -> Vec<ViewSample> {
-    (0..grid.len())
-        .into_par_iter()
-        .with_min_len(512)
-        .map(|i| {
-            let (theta_r, phi_r) = grid.direction(i);
-            view(material, light, theta_r, phi_r)
+    let dirs: Vec<(f64, f64)> = (0..grid.len()).map(|i| grid.direction(i)).collect();
+    let geoms: Vec<Geometry> = dirs.iter().map(|&(t, p)| light.geometry(t, p)).collect();
+    let f = Engine::new(material)
+        .pbrdf_of(&geoms)
+        .expect("no per-element index");
+    dirs.iter()
+        .zip(&f)
+        .map(|(&(theta_r, phi_r), f)| ViewSample {
+            theta_r,
+            phi_r,
+            brdf: f.m00(),
+            stokes: f.apply(&light.stokes),
         })
         .collect()
-}
-
-fn view(material: &Material, light: &Illumination, theta_r: f64, phi_r: f64) -> ViewSample {
-    let f = material.pbrdf(&light.geometry(theta_r, phi_r));
-    ViewSample {
-        theta_r,
-        phi_r,
-        brdf: f.0[0][0],
-        stokes: f.apply(&light.stokes),
-    }
 }
 
 /// Target and background seen from one direction.
@@ -311,7 +311,7 @@ impl ContrastSample {
     }
     /// `S0_target / S0_background`: 1 when both are 0, +∞ when only the background is.
     pub fn intensity_ratio(&self) -> f64 {
-        let (t, b) = (self.target.0[0], self.background.0[0]);
+        let (t, b) = (self.target.s0(), self.background.s0());
         if b > 0.0 {
             t / b
         } else if t > 0.0 {
@@ -323,7 +323,7 @@ impl ContrastSample {
     /// `AoLP_target − AoLP_background` (rad) folded into (−π/2, π/2]; 0 when either beam has
     /// no linear polarization (its AoLP is undefined).
     pub fn aolp_difference(&self) -> f64 {
-        let lin = |s: &Stokes| s.0[1].hypot(s.0[2]);
+        let lin = |s: &Stokes| s.s1().hypot(s.s2());
         if lin(&self.target) == 0.0 || lin(&self.background) == 0.0 {
             return 0.0;
         }
@@ -451,31 +451,47 @@ impl<'a> Contrast<'a> {
         }
     }
 
-    /// Both materials seen from `(theta_r, phi_r)` (rad; θr clamped into `[0, π/2]`).
+    /// Both materials seen from `(theta_r, phi_r)` (rad; θr clamped into `[0, π/2]`), by the
+    /// engine's single-element path.
     pub fn at(&self, theta_r: f64, phi_r: f64) -> ContrastSample {
         let g = self.light.geometry(theta_r, phi_r);
         let s = self.light.stokes;
         ContrastSample {
             theta_r: g.theta_r(),
             phi_r,
-            target: self.target.pbrdf(&g).apply(&s),
-            background: self.background.pbrdf(&g).apply(&s),
+            target: Kernel::new(self.target).pbrdf(&g).apply(&s),
+            background: Kernel::new(self.background).pbrdf(&g).apply(&s),
         }
     }
 
-    /// Both materials over the whole grid, in parallel.
-    pub fn map(&self, grid: &ViewGrid) -> ContrastMap {
-        let samples = (0..grid.len())
-            .into_par_iter()
-            .with_min_len(256)
-            .map(|i| {
-                let (t, p) = grid.direction(i);
-                self.at(t, p)
-            })
+    /// Both materials seen from each direction `(θr, φr)` (rad; θr clamped into `[0, π/2]`),
+    /// through the engine.
+    pub fn at_all(&self, dirs: &[(f64, f64)]) -> Vec<ContrastSample> {
+        let geoms: Vec<Geometry> = dirs
+            .iter()
+            .map(|&(t, p)| self.light.geometry(t, p))
             .collect();
+        let ft = Engine::new(self.target).pbrdf_of(&geoms).expect("no index");
+        let fb = Engine::new(self.background)
+            .pbrdf_of(&geoms)
+            .expect("no index");
+        let s = self.light.stokes;
+        (0..dirs.len())
+            .map(|k| ContrastSample {
+                theta_r: geoms[k].theta_r(),
+                phi_r: dirs[k].1,
+                target: ft[k].apply(&s),
+                background: fb[k].apply(&s),
+            })
+            .collect()
+    }
+
+    /// Both materials over the whole grid, through the engine.
+    pub fn map(&self, grid: &ViewGrid) -> ContrastMap {
+        let dirs: Vec<(f64, f64)> = (0..grid.len()).map(|i| grid.direction(i)).collect();
         ContrastMap {
             grid: grid.clone(),
-            samples,
+            samples: self.at_all(&dirs),
         }
     }
 
@@ -530,17 +546,20 @@ impl<'a> Contrast<'a> {
         let (mut dt, mut dp) = (grid.theta_step(), grid.phi_step());
         for _ in 0..2 {
             let (t0, p0) = (best.theta_r, best.phi_r);
+            let mut cells = Vec::new();
             for a in -SUB..=SUB {
                 let t = t0 + dt * f64::from(a) / f64::from(SUB);
                 if t < 0.0 || t > t_max {
                     continue;
                 }
                 for b in -SUB..=SUB {
-                    let p = p0 + dp * f64::from(b) / f64::from(SUB);
-                    let c = self.at(t, p);
-                    if c.score(by) > best.score(by) {
-                        best = c;
-                    }
+                    cells.push((t, p0 + dp * f64::from(b) / f64::from(SUB)));
+                }
+            }
+            // The first strictly better candidate in scan order wins, as a serial search would.
+            for c in self.at_all(&cells) {
+                if c.score(by) > best.score(by) {
+                    best = c;
                 }
             }
             dt /= f64::from(SUB);

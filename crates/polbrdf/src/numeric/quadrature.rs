@@ -1,4 +1,5 @@
-//! Gauss–Legendre quadrature, used for the hemispherical normalization of D (spec §4).
+//! Gauss–Legendre quadrature: the hemispherical normalization of D (docs/model.md §5), the albedo
+//! (§11) and every hemispherical integral.
 
 use std::sync::OnceLock;
 
@@ -42,20 +43,21 @@ pub(crate) fn gl20() -> &'static (Vec<f64>, Vec<f64>) {
     RULE.get_or_init(|| gauss_legendre(20))
 }
 
-/// `∫_lo^hi f` by the 20-point rule on `panels` equal panels.
-pub fn integrate(f: impl Fn(f64) -> f64, lo: f64, hi: f64, panels: usize) -> f64 {
+/// The nodes and weights of the composite 20-point rule on `panels` equal panels of
+/// `[lo, hi]`: `∫_lo^hi f ≈ Σ w·f(x)`.
+pub fn composite(lo: f64, hi: f64, panels: usize) -> impl Iterator<Item = (f64, f64)> {
     let (x, w) = gl20();
     let h = (hi - lo) / panels as f64;
-    let mut total = 0.0;
-    for p in 0..panels {
+    let half = 0.5 * h;
+    (0..panels).flat_map(move |p| {
         let mid = lo + (p as f64 + 0.5) * h;
-        let half = 0.5 * h;
-        total += x
-            .iter()
+        x.iter()
             .zip(w)
-            .map(|(xi, wi)| wi * f(mid + half * xi))
-            .sum::<f64>()
-            * half;
-    }
-    total
+            .map(move |(xi, wi)| (mid + half * xi, wi * half))
+    })
+}
+
+/// `∫_lo^hi f` by the 20-point rule on `panels` equal panels ([`composite`]).
+pub fn integrate(f: impl Fn(f64) -> f64, lo: f64, hi: f64, panels: usize) -> f64 {
+    composite(lo, hi, panels).map(|(x, w)| w * f(x)).sum()
 }

@@ -1,6 +1,9 @@
-//! Jones matrices in the psps basis (spec §2–3; eq. 11).
+//! Jones matrices in the psps basis (docs/model.md §2, §4; eq. 11).
+//!
+//! A Jones matrix maps the complex amplitudes `(E_s, E_p)` of the incident beam (its psps frame,
+//! time dependence `exp(−iωt)`) to those of the outgoing beam (its own psps frame).
 
-use crate::fresnel::Fresnel;
+use crate::optics::fresnel::Fresnel;
 use num_complex::Complex64;
 use std::ops::Mul;
 
@@ -20,7 +23,9 @@ impl Jones {
         Self([[a, z], [z, b]])
     }
 
-    /// Frame rotation `Rot(x) = [[cos x, −sin x], [sin x, cos x]]` (spec §3).
+    /// Frame rotation `Rot(x) = [[cos x, −sin x], [sin x, cos x]]` (docs/model.md §4): the
+    /// components in a frame whose s axis is turned by `x` from s toward p, expressed in the
+    /// original frame (a positive `x` turns the field vector's direction from s toward p).
     pub fn rotation(x: f64) -> Self {
         let (s, c) = x.sin_cos();
         let r = |v: f64| Complex64::new(v, 0.0);
@@ -28,7 +33,8 @@ impl Jones {
     }
 
     /// The microfacet reflection of eq. 11: `T = Rot(η_r) · diag(rs, rp) · Rot(−η_i)`, mapping the
-    /// incident beam's (s, p) components to the reflected beam's (spec §3).
+    /// incident beam's (s, p) components to the reflected beam's (docs/model.md §4), with the
+    /// signed Priest–Meier angles η of [`crate::AngleVariables`].
     pub fn microfacet(fresnel: &Fresnel, eta_i: f64, eta_r: f64) -> Self {
         Self::rotation(eta_r) * Self::diagonal(fresnel.rs, fresnel.rp) * Self::rotation(-eta_i)
     }

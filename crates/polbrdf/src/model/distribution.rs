@@ -1,7 +1,8 @@
-//! The facet distribution `D(θN) = a·exp(−b·θN²)` (eq. 4, spec §4).
+//! The facet distribution `D(θN) = a·exp(−b·θN²)` (eq. 4, docs/model.md §5).
 
 use crate::error::{at_most, non_negative, positive, Result, MAX_MAGNITUDE};
-use crate::quadrature::integrate;
+use crate::numeric::math::{Math, Std};
+use crate::numeric::quadrature::integrate;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Gaussian facet distribution of eq. 4: `D(θN) = a·exp(−b·θN²)`, θN in rad, `a` in sr⁻¹,
@@ -25,7 +26,7 @@ impl Distribution {
     }
 
     /// Given `b`, with `a` from the hemispherical normalization
-    /// `∫ D(θN) cosθN dΩ = 1` (spec §4).
+    /// `∫ D(θN) cosθN dΩ = 1` (docs/model.md §5).
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming `b`.
@@ -38,7 +39,7 @@ impl Distribution {
     }
 
     /// From the roughness angle σ (rad): `b = 1/σ²` (SCATMECH's Gaussian angle distribution),
-    /// `a` normalized (spec §4).
+    /// `a` normalized (docs/model.md §5).
     ///
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming `sigma` unless σ is finite and > 0.
@@ -64,7 +65,19 @@ impl Distribution {
 
     /// `D(θN)` (eq. 4), sr⁻¹.
     pub fn eval(&self, theta_n: f64) -> f64 {
-        self.a * (-self.b * theta_n * theta_n).exp()
+        self.eval_with::<Std>(theta_n)
+    }
+
+    /// `D(θN) = a·exp(−bθN²)` with the exponential of backend `M` — the one formula of eq. 4.
+    #[inline(always)]
+    pub fn eval_with<M: Math>(&self, theta_n: f64) -> f64 {
+        self.a * M::exp_neg(self.exponent(theta_n))
+    }
+
+    /// The exponent `−b·θN²` of D.
+    #[inline(always)]
+    pub fn exponent(&self, theta_n: f64) -> f64 {
+        -(self.b * theta_n * theta_n)
     }
 
     /// `∫_hemisphere D(θN) cosθN dΩ` (1 for a normalized distribution).
@@ -88,7 +101,7 @@ fn half_integral(b: f64) -> f64 {
 }
 
 /// The `a` that normalizes `D` over the hemisphere, `a = 1 / (2π ∫_0^{π/2} e^{−bθ²} sinθ cosθ dθ)`
-/// (spec §4). For large `b` (small σ), `a → b/π`; for `b → 0`, `a → 1/π`.
+/// (docs/model.md §5). For large `b` (small σ), `a → b/π`; for `b → 0`, `a → 1/π`.
 pub fn normalization(b: f64) -> f64 {
     1.0 / (2.0 * PI * half_integral(b))
 }

@@ -5,9 +5,10 @@
 //! `dΩ_r = 4(w_i·h) dΩ_h`, so the specular lobe becomes the facet distribution D(θN) centred on
 //! the macro normal, whatever its width — a lobe of σ = 0.1° is resolved as well as one of 60°.
 
-use crate::geometry::Geometry;
+use crate::engine::Engine;
+use crate::geometry::GeometryBatch;
 use crate::model::Material;
-use crate::quadrature::integrate;
+use crate::numeric::quadrature::{composite, integrate};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Albedo at one incidence angle, split into its terms.
@@ -46,14 +47,17 @@ pub fn directional_hemispherical(material: &Material, theta_i: f64) -> Albedo {
     }
     let (si, ci) = theta_i.sin_cos();
     let w_i = [si, 0.0, ci];
-    // The surface integrand at facet normal (θN, φN), in h-space.
-    let surface_at = |theta_n: f64, phi_n: f64| -> f64 {
+    // The quadrature nodes of the surface integral in h-space: viewing directions and weights.
+    let mut theta_r = Vec::new();
+    let mut phi_r = Vec::new();
+    let mut weight = Vec::new();
+    let mut node = |theta_n: f64, phi_n: f64, w: f64| {
         let (sn, cn) = theta_n.sin_cos();
         let (sp, cp) = phi_n.sin_cos();
         let h = [sn * cp, sn * sp, cn];
         let cos_beta = w_i[0] * h[0] + w_i[1] * h[1] + w_i[2] * h[2];
         if cos_beta <= 0.0 {
-            return 0.0; // the facet faces away from the source
+            return; // the facet faces away from the source
         }
         let w_r = [
             2.0 * cos_beta * h[0] - w_i[0],
@@ -61,14 +65,12 @@ pub fn directional_hemispherical(material: &Material, theta_i: f64) -> Albedo {
             2.0 * cos_beta * h[2] - w_i[2],
         ];
         if w_r[2] <= 0.0 {
-            return 0.0; // reflected below the horizon
+            return; // reflected below the horizon
         }
-        let theta_r = w_r[0].hypot(w_r[1]).atan2(w_r[2]);
-        let phi_r = w_r[1].atan2(w_r[0]);
-        let Ok(g) = Geometry::new(theta_i, 0.0, theta_r, phi_r) else {
-            return 0.0;
-        };
-        material.evaluate(&g).surface * w_r[2] * 4.0 * cos_beta
+        theta_r.push(w_r[0].hypot(w_r[1]).atan2(w_r[2]));
+        phi_r.push(w_r[1].atan2(w_r[0]));
+        // f_s cosθr dΩ_r = f_s · w_r·z · 4 cosβ dΩ_h
+        weight.push(w * w_r[2] * 4.0 * cos_beta);
     };
     // θN quadrature: dense over the lobe (8σ), then the rest of the hemisphere.
     let sigma = material.distribution().sigma();
@@ -77,20 +79,16 @@ pub fn directional_hemispherical(material: &Material, theta_i: f64) -> Albedo {
     // |φN| < φmax: w_r·z = 2cosβ·cosθN − cosθi > 0 with cosβ = sinθi sinθN cosφN + cosθi cosθN.
     // Integrating over that arc only (the integrand is smooth there, and even in φN) avoids the
     // horizon's discontinuity.
-    let ring = |theta_n: f64| -> f64 {
+    let phi_max = |theta_n: f64| -> f64 {
         let (sn, cn) = theta_n.sin_cos();
         let denom = 2.0 * si * sn * cn;
-        let phi_max = if denom > 0.0 {
+        if denom > 0.0 {
             (ci * (1.0 - 2.0 * cn * cn) / denom).clamp(-1.0, 1.0).acos()
         } else if cn * cn > 0.5 {
             PI // θi = 0 or θN = 0: the whole ring, if any, is visible
         } else {
             0.0
-        };
-        if phi_max == 0.0 {
-            return 0.0;
         }
-        2.0 * integrate(|phi| surface_at(theta_n, phi), 0.0, phi_max, 4) * sn
     };
     // The arc starts being cut (φmax < π) at θN = π/4 − θi/2 and vanishes at θN = π/4 + θi/2:
     // the ring integral has kinks there, so the θN quadrature is split at them and at the lobe.
@@ -104,12 +102,33 @@ pub fn directional_hemispherical(material: &Material, theta_i: f64) -> Albedo {
     cuts.retain(|c| (0.0..=FRAC_PI_2).contains(c));
     cuts.sort_by(f64::total_cmp);
     cuts.dedup();
-    let surface: f64 = cuts
-        .windows(2)
-        .map(|w| integrate(ring, w[0], w[1], 8))
-        .sum();
+    for w in cuts.windows(2) {
+        for (theta_n, w_n) in composite(w[0], w[1], 8) {
+            let pm = phi_max(theta_n);
+            if pm == 0.0 {
+                continue;
+            }
+            // The ring is even in φN: twice the half ring, times sinθN of dΩ_h.
+            let ring = 2.0 * w_n * theta_n.sin();
+            for (phi_n, w_p) in composite(0.0, pm, 4) {
+                node(theta_n, phi_n, ring * w_p);
+            }
+        }
+    }
+    // f_s at every node through the engine (F00 of the material without its volume term).
+    let zeros = vec![0.0; theta_r.len()];
+    let ti = vec![theta_i; theta_r.len()];
+    let batch = GeometryBatch::new(&ti, &zeros, &theta_r, &phi_r)
+        .expect("directions above the horizon by construction");
+    let mut f_s = vec![0.0; theta_r.len()];
+    let mut dolp = vec![0.0; theta_r.len()];
+    Engine::new(&material.surface_only())
+        .brdf_dolp_into(&batch, &mut f_s, &mut dolp)
+        .expect("lengths match");
+    let surface: f64 = f_s.iter().zip(&weight).map(|(f, w)| f * w).sum();
     // Volume term: no azimuth dependence.
     let (rho_d, rho_v) = (material.rho_d(), material.rho_v());
+    // Only the volume term remains: ρ_D·π + ∫ 2ρ_V/(cosθi + cosθr) cosθr dΩ_r.
     let volume = PI * rho_d
         + if rho_v > 0.0 {
             2.0 * PI

@@ -5,7 +5,7 @@
 //! Johnson & Christy, Phys. Rev. B 9, 5056 (1974). Values rounded to three significant figures.
 
 use crate::error::{Error, Result};
-use crate::model::MaterialSpec;
+use crate::model::spec::MaterialSpec;
 
 /// One preset: its name, a one-line description and its spec.
 #[derive(Debug, Clone)]
@@ -93,5 +93,8 @@ pub fn preset(name: &str) -> Result<MaterialSpec> {
         .into_iter()
         .find(|p| p.name == name)
         .map(|p| p.spec)
-        .ok_or_else(|| Error::UnknownPreset(name.to_string()))
+        .ok_or_else(|| Error::UnknownPreset {
+            name: name.to_string(),
+            known: names().join(", "),
+        })
 }

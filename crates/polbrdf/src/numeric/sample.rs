@@ -1,17 +1,23 @@
-//! A small deterministic random generator for benchmarks, tests and simulation studies, so
-//! that the same seed gives the same geometries on every platform and in every tool (the
-//! `polbrdf bench` command and the Python package's Rust baseline time identical inputs).
+//! The project's one random generator, for benchmarks, tests, fit starts and simulation
+//! studies: deterministic, so that the same seed gives the same numbers on every platform and in
+//! every tool (the `polbrdf bench` command and the Python package's Rust baseline time identical
+//! inputs; synthetic measurement sets are reproducible).
 
 /// SplitMix64 (Steele, Lea & Flood 2014): 64-bit state, uniform doubles in [0, 1).
 #[derive(Debug, Clone)]
 pub struct SplitMix64 {
     state: u64,
+    /// The second value of the last Box–Muller pair, not yet returned by [`SplitMix64::normal`].
+    spare: Option<f64>,
 }
 
 impl SplitMix64 {
     /// A generator with the given seed.
     pub fn new(seed: u64) -> Self {
-        Self { state: seed }
+        Self {
+            state: seed,
+            spare: None,
+        }
     }
 
     /// Uniform in [0, 1), with 53 random bits.
@@ -37,5 +43,19 @@ impl SplitMix64 {
     /// `n` values uniform in [lo, hi).
     pub fn uniform(&mut self, lo: f64, hi: f64, n: usize) -> Vec<f64> {
         (0..n).map(|_| self.range(lo, hi)).collect()
+    }
+
+    /// A standard normal deviate (Box–Muller on two uniforms; the pair's second value is kept
+    /// for the next call).
+    pub fn normal(&mut self) -> f64 {
+        if let Some(z) = self.spare.take() {
+            return z;
+        }
+        let u1 = 1.0 - self.next_f64(); // in (0, 1]: ln is finite
+        let u2 = self.next_f64();
+        let r = (-2.0 * u1.ln()).sqrt();
+        let (s, c) = (2.0 * std::f64::consts::PI * u2).sin_cos();
+        self.spare = Some(r * s);
+        r * c
     }
 }

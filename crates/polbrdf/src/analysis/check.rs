@@ -1,10 +1,11 @@
 //! Physical validity of a parameter set over a dense grid of geometries: is `F` realizable
 //! everywhere, does the model conserve energy, and is it reciprocal where its form should be?
 
-use crate::albedo::{directional_hemispherical, Albedo};
+use crate::analysis::albedo::{directional_hemispherical, Albedo};
+use crate::engine::Engine;
 use crate::geometry::Geometry;
-use crate::model::Material;
-use crate::shadowing::AzimuthTerm;
+use crate::model::{AzimuthTerm, Material};
+use crate::optics::mueller::Mueller;
 use rayon::prelude::*;
 
 /// The grid of [`physical_validity`]: zenith angles `0, step, …` below 90° for source and
@@ -96,27 +97,31 @@ pub fn physical_validity(material: &Material, grid: &CheckGrid) -> ValidityRepor
             }
         }
     }
+    // F at every grid geometry and at its reciprocal, through the engine.
+    let engine = Engine::new(material);
+    let forward = engine.pbrdf_of(&geoms).expect("no per-element index");
+    let reciprocal: Vec<Geometry> = geoms.iter().map(Geometry::reciprocal).collect();
+    let backward = engine.pbrdf_of(&reciprocal).expect("no per-element index");
     let p = [1.0, 1.0, -1.0, 1.0];
-    let per_geometry: Vec<(f64, f64, f64, Geometry)> = geoms
-        .par_iter()
-        .map(|g| {
-            let f = material.pbrdf(g);
-            let f00 = f.0[0][0];
+    let per_geometry: Vec<(f64, f64, f64, Geometry)> = (0..geoms.len())
+        .into_par_iter()
+        .map(|k| {
+            let (f, r): (&Mueller, &Mueller) = (&forward[k], &backward[k]);
+            let f00 = f.m00();
             let min_ev = if f00 > 0.0 {
                 f.coherency_eigenvalues()[0] / f00
             } else {
                 0.0
             };
-            let r = material.pbrdf(&g.reciprocal());
-            let scale = f00.max(r.0[0][0]).max(f64::MIN_POSITIVE);
-            let scalar = (f00 - r.0[0][0]).abs() / scale;
+            let scale = f00.max(r.m00()).max(f64::MIN_POSITIVE);
+            let scalar = (f00 - r.m00()).abs() / scale;
             let mut matrix: f64 = 0.0;
             for i in 0..4 {
                 for j in 0..4 {
-                    matrix = matrix.max((f.0[i][j] - p[i] * r.0[j][i] * p[j]).abs() / scale);
+                    matrix = matrix.max((f[(i, j)] - p[i] * r[(j, i)] * p[j]).abs() / scale);
                 }
             }
-            (min_ev, scalar, matrix, *g)
+            (min_ev, scalar, matrix, geoms[k])
         })
         .collect();
     let min_coherency = per_geometry

@@ -1,7 +1,8 @@
-//! The Maxwell–Beard shadowing/obscuration function SO (eq. 3, spec §4).
+//! The Maxwell–Beard shadowing/obscuration function SO (eq. 3, docs/model.md §5).
 
 use crate::error::{positive, Result};
 use crate::geometry::AngleVariables;
+use crate::numeric::math::{Math, Std};
 
 /// Whether SO includes the azimuth factor `1/(1 + ΦN·θi/Ω)` of eq. 3 as printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -9,7 +10,7 @@ pub enum AzimuthTerm {
     /// No azimuth factor (default): the simplified model (eq. 6) takes ΦN = 0.
     #[default]
     None,
-    /// Eq. 3 as printed, with ΦN folded into [0, π/2] (spec §1).
+    /// Eq. 3 as printed, with ΦN folded into [0, π/2] (docs/model.md §1).
     Eq3,
 }
 
@@ -36,12 +37,15 @@ impl std::str::FromStr for AzimuthTerm {
 
 /// Maxwell–Beard shadowing/obscuration (eq. 3):
 /// `SO = [1 + (θN/Ω)·exp(−2β/τ)] / [1 + θN/Ω]`, optionally times `1/(1 + ΦN·θi/Ω)`;
-/// all angles in radians (the paper's τ = 15, Ω = 40 are degrees, spec §4).
+/// all angles in radians (the paper's τ = 15, Ω = 40 are degrees, docs/model.md §5).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shadowing {
     tau: f64,
     omega: f64,
     azimuth: AzimuthTerm,
+    /// `1/Ω` and `2/τ`, computed once.
+    inv_omega: f64,
+    two_over_tau: f64,
 }
 
 impl Shadowing {
@@ -50,20 +54,20 @@ impl Shadowing {
     /// # Errors
     /// [`crate::Error::InvalidParameter`] naming `tau` or `omega` unless finite and > 0.
     pub fn new(tau: f64, omega: f64, azimuth: AzimuthTerm) -> Result<Self> {
+        let (tau, omega) = (positive("tau", tau)?, positive("omega", omega)?);
         Ok(Self {
-            tau: positive("tau", tau)?,
-            omega: positive("omega", omega)?,
+            tau,
+            omega,
             azimuth,
+            inv_omega: 1.0 / omega,
+            two_over_tau: 2.0 / tau,
         })
     }
 
     /// Maxwell and Beard's values used by the paper: τ = 15°, Ω = 40°, no azimuth factor.
     pub fn paper() -> Self {
-        Self {
-            tau: 15f64.to_radians(),
-            omega: 40f64.to_radians(),
-            azimuth: AzimuthTerm::None,
-        }
+        Self::new(15f64.to_radians(), 40f64.to_radians(), AzimuthTerm::None)
+            .expect("positive constants")
     }
 
     /// τ (rad).
@@ -82,11 +86,22 @@ impl Shadowing {
     /// SO at the given angle variables (eq. 3). Equals 1 at specular (θN = 0) and at
     /// backscatter (β = 0).
     pub fn eval(&self, v: &AngleVariables) -> f64 {
-        let x = v.theta_n / self.omega;
-        let so = (1.0 + x * (-2.0 * v.beta / self.tau).exp()) / (1.0 + x);
-        match self.azimuth {
-            AzimuthTerm::None => so,
-            AzimuthTerm::Eq3 => so / (1.0 + v.phi_n * v.theta_i / self.omega),
-        }
+        let (num, den) = self.ratio::<Std>(v.theta_n, v.beta, v.phi_n, v.theta_i);
+        num / den
+    }
+
+    /// SO (eq. 3) as `(numerator, denominator)`, the one formula both paths use (the batch
+    /// engine folds the division into the surface term's):
+    /// `num = 1 + x·exp(−2β/τ)`, `den = (1 + x)·A_φ`, `x = θN/Ω`, `A_φ = 1 + ΦN·θi/Ω` (`eq3`)
+    /// or 1.
+    #[inline(always)]
+    pub fn ratio<M: Math>(&self, theta_n: f64, beta: f64, phi_n: f64, theta_i: f64) -> (f64, f64) {
+        let x = theta_n * self.inv_omega;
+        let e = M::exp_neg(-(beta * self.two_over_tau));
+        let a_phi = match self.azimuth {
+            AzimuthTerm::None => 1.0,
+            AzimuthTerm::Eq3 => M::mla(phi_n * theta_i, self.inv_omega, 1.0),
+        };
+        (M::mla(x, e, 1.0), (1.0 + x) * a_phi)
     }
 }

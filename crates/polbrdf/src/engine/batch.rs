@@ -1,0 +1,325 @@
+//! The parallel driver of the engine: every grid of the crate and of the tools around it goes
+//! through here. A batch is split into chunks of [`CHUNK`] elements, each evaluated by a
+//! [`Kernel`] on a rayon worker.
+
+use crate::engine::kernel::{IndexColumns, Kernel, Prepared, BLOCK};
+use crate::error::Result;
+use crate::geometry::batch::check_len;
+use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
+use crate::model::Material;
+use crate::optics::mueller::Mueller;
+use rayon::prelude::*;
+
+/// Most elements per parallel task: large enough to amortize scheduling.
+pub const CHUNK: usize = 4096;
+
+/// Elements per parallel task for a batch of `n`: at most [`CHUNK`], and small enough that
+/// every thread gets about four tasks (a batch of a few thousand — a fit's geometries — is
+/// spread over all cores), in whole blocks. Results do not depend on it.
+fn chunk_len(n: usize) -> usize {
+    let threads = rayon::current_num_threads().max(1);
+    let per = n.div_ceil(4 * threads).div_ceil(BLOCK) * BLOCK;
+    per.clamp(8 * BLOCK, CHUNK)
+}
+
+/// Full-Mueller outputs of at least this many elements (8 MB) bypass the caches.
+const STREAM_MIN: usize = 1 << 16;
+
+/// The engine for one material: evaluates batches in parallel, optionally with a complex index
+/// per element ([`Engine::with_index`]).
+///
+/// ```
+/// use polbrdf::engine::{Engine, IndexColumns};
+/// use polbrdf::{GeometryBatch, MaterialSpec};
+/// let m = MaterialSpec::new(1.5, 10.0).build()?;
+/// let t = [0.5, 0.5, 0.5];
+/// let (pi, pr) = ([0.0; 3], [std::f64::consts::PI; 3]);
+/// let batch = GeometryBatch::new(&t, &pi, &t, &pr)?;
+/// // The same geometry with three indices (say, three wavelengths), in one call:
+/// let (n, k) = ([1.4, 1.5, 1.6], [0.0; 3]);
+/// let mut brdf = [0.0; 3];
+/// let mut dolp = [0.0; 3];
+/// Engine::new(&m)
+///     .with_index(IndexColumns::new(&n, &k)?)
+///     .brdf_dolp_into(&batch, &mut brdf, &mut dolp)?;
+/// assert!(brdf[0] < brdf[1] && brdf[1] < brdf[2]);
+/// # Ok::<(), polbrdf::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Engine<'a> {
+    kernel: Kernel<'a>,
+    index_len: Option<usize>,
+}
+
+impl<'a> Engine<'a> {
+    /// The engine of `material` (its own index for every element).
+    pub fn new(material: &'a Material) -> Self {
+        Self {
+            kernel: Kernel::new(material),
+            index_len: None,
+        }
+    }
+
+    /// Element `j` of every batch evaluated with index `index.get(j)` (the batch must be as
+    /// long as `index`).
+    pub fn with_index(self, index: IndexColumns<'a>) -> Self {
+        Self {
+            index_len: Some(index.len()),
+            kernel: self.kernel.with_index(index),
+        }
+    }
+
+    /// The serial kernel.
+    pub fn kernel(&self) -> &Kernel<'a> {
+        &self.kernel
+    }
+
+    fn check(&self, n: usize) -> Result<()> {
+        match self.index_len {
+            Some(len) => check_len("n", len, n),
+            None => Ok(()),
+        }
+    }
+
+    /// The full pBRDF `F` (row-major 4×4, sr⁻¹) at every geometry, written into `out`.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when `out` (or the per-element index) is not as long as
+    /// the batch.
+    pub fn mueller_into(&self, batch: &GeometryBatch<'_>, out: &mut [[f64; 16]]) -> Result<()> {
+        check_len("out", out.len(), batch.len())?;
+        self.check(batch.len())?;
+        // Outputs far beyond the caches (≥ 8 MB) are written with non-temporal stores.
+        let kernel = self.kernel.clone().streaming(out.len() >= STREAM_MIN);
+        let len = chunk_len(out.len());
+        out.par_chunks_mut(len)
+            .enumerate()
+            .for_each(|(c, chunk)| kernel.mueller_into(batch, c * len, chunk));
+        Ok(())
+    }
+
+    /// The full pBRDF at every geometry as a new vector.
+    ///
+    /// # Errors
+    /// As [`Engine::mueller_into`].
+    pub fn mueller(&self, batch: &GeometryBatch<'_>) -> Result<Vec<[f64; 16]>> {
+        let mut out = vec![[0.0; 16]; batch.len()];
+        self.mueller_into(batch, &mut out)?;
+        Ok(out)
+    }
+
+    /// The scalar BRDF `f` (sr⁻¹) and the DoLP for unpolarized input at every geometry (only
+    /// the first column of F, without rotations).
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
+    pub fn brdf_dolp_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+    ) -> Result<()> {
+        check_len("brdf", brdf.len(), batch.len())?;
+        check_len("dolp", dolp.len(), batch.len())?;
+        self.check(batch.len())?;
+        let kernel = &self.kernel;
+        let len = chunk_len(brdf.len());
+        brdf.par_chunks_mut(len)
+            .zip(dolp.par_chunks_mut(len))
+            .enumerate()
+            .for_each(|(c, (fb, fd))| kernel.brdf_dolp_into(batch, c * len, fb, fd));
+        Ok(())
+    }
+
+    /// The scalar BRDF `f` (sr⁻¹), the DoLP and the AoLP (rad, in (−π/2, π/2], measured from
+    /// the reflected beam's s axis toward its p axis; 0 without linear polarization) for
+    /// unpolarized input at every geometry — `Stokes::dolp` and `Stokes::aolp` of
+    /// `F·(1, 0, 0, 0)`.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
+    pub fn brdf_dolp_aolp_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+        aolp: &mut [f64],
+    ) -> Result<()> {
+        check_len("brdf", brdf.len(), batch.len())?;
+        check_len("dolp", dolp.len(), batch.len())?;
+        check_len("aolp", aolp.len(), batch.len())?;
+        self.check(batch.len())?;
+        let kernel = &self.kernel;
+        let len = chunk_len(brdf.len());
+        brdf.par_chunks_mut(len)
+            .zip(dolp.par_chunks_mut(len))
+            .zip(aolp.par_chunks_mut(len))
+            .enumerate()
+            .for_each(|(c, ((fb, fd), fa))| kernel.brdf_dolp_aolp_into(batch, c * len, fb, fd, fa));
+        Ok(())
+    }
+
+    /// The geometry stages of every element of `batch`, computed once (in parallel), for
+    /// [`Engine::mueller_prepared_into`] and [`Engine::brdf_dolp_prepared_into`] of any engine
+    /// at the same SIMD level — the same geometries for many materials or wavelengths, as a
+    /// fit or a spectral sweep needs them. Results are exactly those of the unprepared methods.
+    pub fn prepare(&self, batch: &GeometryBatch<'_>) -> Prepared {
+        let n = batch.len();
+        let len = chunk_len(n);
+        let parts: Vec<Prepared> = (0..n.div_ceil(len))
+            .into_par_iter()
+            .map(|c| {
+                let start = c * len;
+                self.kernel.prepare_range(batch, start, len.min(n - start))
+            })
+            .collect();
+        let mut all = Prepared::empty(self.kernel.level());
+        for p in parts {
+            all.append(p);
+        }
+        all
+    }
+
+    /// As [`Engine::mueller_into`], for a prepared batch.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when `out` (or the per-element index) is not as long as
+    /// the batch.
+    ///
+    /// # Panics
+    /// When `prepared` was made at another SIMD level than this engine's.
+    pub fn mueller_prepared_into(&self, prepared: &Prepared, out: &mut [[f64; 16]]) -> Result<()> {
+        check_len("out", out.len(), prepared.len())?;
+        self.check(prepared.len())?;
+        let kernel = &self.kernel;
+        let len = chunk_len(out.len());
+        out.par_chunks_mut(len)
+            .enumerate()
+            .for_each(|(c, chunk)| kernel.mueller_prepared_into(prepared, c * len, chunk));
+        Ok(())
+    }
+
+    /// As [`Engine::brdf_dolp_into`], for a prepared batch.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when an output (or the per-element index) is not as long
+    /// as the batch.
+    ///
+    /// # Panics
+    /// When `prepared` was made at another SIMD level than this engine's.
+    pub fn brdf_dolp_prepared_into(
+        &self,
+        prepared: &Prepared,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+    ) -> Result<()> {
+        check_len("brdf", brdf.len(), prepared.len())?;
+        check_len("dolp", dolp.len(), prepared.len())?;
+        self.check(prepared.len())?;
+        let kernel = &self.kernel;
+        let len = chunk_len(brdf.len());
+        brdf.par_chunks_mut(len)
+            .zip(dolp.par_chunks_mut(len))
+            .enumerate()
+            .for_each(|(c, (fb, fd))| kernel.brdf_dolp_prepared_into(prepared, c * len, fb, fd));
+        Ok(())
+    }
+
+    /// The pBRDF at every geometry of a slice of (already validated) geometries.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when a per-element index is not as long as the slice.
+    pub fn pbrdf_of(&self, geometries: &[Geometry]) -> Result<Vec<Mueller>> {
+        self.check(geometries.len())?;
+        let mut out = vec![Mueller::zero(); geometries.len()];
+        let kernel = &self.kernel;
+        if self.index_len.is_some() {
+            // Positions matter for the index: one serial pass (the index is per element).
+            kernel.mueller_of(geometries, &mut out);
+        } else {
+            let len = chunk_len(out.len());
+            out.par_chunks_mut(len)
+                .zip(geometries.par_chunks(len))
+                .for_each(|(o, g)| kernel.mueller_of(g, o));
+        }
+        Ok(out)
+    }
+
+    /// The pBRDF (row-major) at explicit angle variables (the angle-variable entry point,
+    /// [`Material::evaluate_angles`]).
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when a per-element index is not as long as `vars`.
+    pub fn mueller_of_angles(&self, vars: &[AngleVariables]) -> Result<Vec<[f64; 16]>> {
+        self.check(vars.len())?;
+        let mut out = vec![[0.0; 16]; vars.len()];
+        let kernel = &self.kernel;
+        if self.index_len.is_some() {
+            kernel.mueller_of_angles(vars, &mut out);
+        } else {
+            let len = chunk_len(out.len());
+            out.par_chunks_mut(len)
+                .zip(vars.par_chunks(len))
+                .for_each(|(o, v)| kernel.mueller_of_angles(v, o));
+        }
+        Ok(out)
+    }
+}
+
+/// The full pBRDF `F` (row-major 4×4, sr⁻¹) at every geometry, written into `out`
+/// ([`Engine::mueller_into`] with the material's own index).
+///
+/// # Errors
+/// [`crate::Error::LengthMismatch`] when `out` is not as long as the batch.
+pub fn mueller_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    out: &mut [[f64; 16]],
+) -> Result<()> {
+    Engine::new(material).mueller_into(batch, out)
+}
+
+/// The scalar BRDF `f` (sr⁻¹) and DoLP for unpolarized input at every geometry
+/// ([`Engine::brdf_dolp_into`]).
+///
+/// # Errors
+/// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
+pub fn brdf_dolp_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    brdf: &mut [f64],
+    dolp: &mut [f64],
+) -> Result<()> {
+    Engine::new(material).brdf_dolp_into(batch, brdf, dolp)
+}
+
+/// The scalar BRDF, DoLP and AoLP for unpolarized input at every geometry
+/// ([`Engine::brdf_dolp_aolp_into`]).
+///
+/// # Errors
+/// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
+pub fn brdf_dolp_aolp_into(
+    material: &Material,
+    batch: &GeometryBatch<'_>,
+    brdf: &mut [f64],
+    dolp: &mut [f64],
+    aolp: &mut [f64],
+) -> Result<()> {
+    Engine::new(material).brdf_dolp_aolp_into(batch, brdf, dolp, aolp)
+}
+
+/// The pBRDF at every geometry of a slice of already validated geometries, in parallel
+/// ([`Engine::pbrdf_of`]).
+pub fn pbrdf_of(material: &Material, geometries: &[Geometry]) -> Vec<Mueller> {
+    Engine::new(material)
+        .pbrdf_of(geometries)
+        .expect("no per-element index")
+}
+
+/// The pBRDF at every geometry as a new vector ([`Engine::mueller`]).
+///
+/// # Errors
+/// As [`mueller_into`].
+pub fn mueller(material: &Material, batch: &GeometryBatch<'_>) -> Result<Vec<[f64; 16]>> {
+    Engine::new(material).mueller(batch)
+}

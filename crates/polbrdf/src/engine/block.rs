@@ -1,0 +1,382 @@
+//! The block kernel: one block of `N` elements at a time, stage by stage, each stage a short
+//! loop over the block that calls the model's formula functions (`crate::geometry::angles`,
+//! `crate::optics::fresnel`, `crate::model`, `crate::optics::mueller`) once per lane, into
+//! small stack arrays (structure of arrays). The loops have no branches the compiler cannot
+//! turn into selects, so it vectorizes each stage across the block; the stages are short, so
+//! the processor overlaps their iterations.
+//!
+//! Each element also gets a `fallback` flag: set where the model is so ill-conditioned that the
+//! polynomial functions' last-bit differences from the standard library's would show at 1e-12
+//! (see [`crate::engine`]); the kernel then takes that element from the one-geometry path.
+
+#![allow(clippy::needless_range_loop)]
+
+use crate::geometry::angles::{self, AngleVariables, FacetAngles, Trig};
+use crate::model::material::ModelParams;
+use crate::model::terms;
+use crate::numeric::math::Math;
+use crate::optics::fresnel;
+use crate::optics::mueller;
+use crate::optics::stokes;
+use std::f64::consts::FRAC_PI_2;
+
+/// One lane per element of a block.
+pub(crate) type Lanes<const N: usize> = [f64; N];
+
+/// Beyond `b·θN²` of this (`D` below `e⁻⁶⁰⁰` of its peak), `D = a·exp(−bθN²)` is so sensitive to
+/// the last bit of θN (relative condition `2bθN²`) that a one-ulp difference of the arctangent
+/// shows at 1e-12: one-geometry path.
+const D_EXPONENT_MAX: f64 = 600.0;
+/// Below `|N² − sin²β|` of this, `q = sqrt(N² − sin²β)` is near its branch point (an index below
+/// 1 near its critical angle) and amplifies rounding: one-geometry path.
+const BRANCH_POINT_MIN: f64 = 1e-4;
+/// Results below this (but not zero) are near the subnormal range, where relative accuracy
+/// ends: one-geometry path.
+pub(crate) const TINY: f64 = 1e-280;
+
+/// The angles (rad) of one block.
+pub(crate) struct BlockIn<const N: usize> {
+    pub ti: Lanes<N>,
+    pub pi: Lanes<N>,
+    pub tr: Lanes<N>,
+    pub pr: Lanes<N>,
+}
+
+impl<const N: usize> BlockIn<N> {
+    pub(crate) fn zeroed() -> Self {
+        Self {
+            ti: [0.0; N],
+            pi: [0.0; N],
+            tr: [0.0; N],
+            pr: [0.0; N],
+        }
+    }
+}
+
+/// `N²` per element of a block, and whether the element's index is outside the kernel's
+/// accurate domain.
+pub(crate) struct IndexLanes<const N: usize> {
+    pub n2r: Lanes<N>,
+    pub n2i: Lanes<N>,
+    pub index_ill: [bool; N],
+}
+
+/// Sines and cosines of a block ([`Trig`] in structure-of-arrays form).
+struct TrigLanes<const N: usize> {
+    v: [Lanes<N>; 8],
+}
+
+impl<const N: usize> TrigLanes<N> {
+    #[inline(always)]
+    fn set(&mut self, j: usize, t: Trig) {
+        [
+            self.v[0][j],
+            self.v[1][j],
+            self.v[2][j],
+            self.v[3][j],
+            self.v[4][j],
+            self.v[5][j],
+            self.v[6][j],
+            self.v[7][j],
+        ] = [t.si, t.ci, t.sr, t.cr, t.sh, t.ch, t.su, t.cu];
+    }
+    #[inline(always)]
+    fn get(&self, j: usize) -> Trig {
+        let v = &self.v;
+        Trig {
+            si: v[0][j],
+            ci: v[1][j],
+            sr: v[2][j],
+            cr: v[3][j],
+            sh: v[4][j],
+            ch: v[5][j],
+            su: v[6][j],
+            cu: v[7][j],
+        }
+    }
+}
+
+/// [`FacetAngles`] of a block in structure-of-arrays form.
+#[derive(Clone)]
+pub(crate) struct FacetLanes<const N: usize> {
+    v: [Lanes<N>; 10],
+}
+
+impl<const N: usize> FacetLanes<N> {
+    #[inline(always)]
+    fn set(&mut self, j: usize, a: FacetAngles) {
+        let v = [
+            a.theta_i,
+            a.cos_i,
+            a.cos_r,
+            a.theta_n,
+            a.beta,
+            a.phi_n,
+            a.cos_beta,
+            a.sin2_beta,
+            a.sz,
+            a.s2,
+        ];
+        for (lane, x) in self.v.iter_mut().zip(v) {
+            lane[j] = x;
+        }
+    }
+    /// Copies another block's lanes (of the same length).
+    #[inline(always)]
+    pub(crate) fn copy_from<const M: usize>(&mut self, other: &FacetLanes<M>) {
+        for (a, b) in self.v.iter_mut().zip(&other.v) {
+            a.copy_from_slice(b);
+        }
+    }
+
+    /// From ten lanes (θi, cos θi, cos θr, θN, β, ΦN, cos β, sin²β, s_z, |s|²).
+    #[inline(always)]
+    pub(crate) fn from_columns(v: [Lanes<N>; 10]) -> Self {
+        Self { v }
+    }
+
+    #[inline(always)]
+    pub(crate) fn get(&self, j: usize) -> FacetAngles {
+        let v = &self.v;
+        FacetAngles {
+            theta_i: v[0][j],
+            cos_i: v[1][j],
+            cos_r: v[2][j],
+            theta_n: v[3][j],
+            beta: v[4][j],
+            phi_n: v[5][j],
+            cos_beta: v[6][j],
+            sin2_beta: v[7][j],
+            sz: v[8][j],
+            s2: v[9][j],
+        }
+    }
+}
+
+/// The geometry part of a block, which does not depend on the material: validity, the angles
+/// and cosines, the Priest–Meier pairs, the angles as given (for the one-geometry path), and
+/// whether the backend's elementary functions reach the element (`|Δ/2|`). A batch of
+/// geometries can be prepared once in these ([`crate::engine::Prepared`]) and evaluated for
+/// many materials or wavelengths.
+#[derive(Clone)]
+pub(crate) struct Geom<const N: usize> {
+    /// Both directions above the horizon.
+    pub valid: [bool; N],
+    /// Outside the backend's range: one-geometry path.
+    pub out_of_range: [bool; N],
+    pub facet: FacetLanes<N>,
+    /// `[c_i, s_i, c_r, s_r]` of [`angles::eta_pairs`].
+    pub pairs: [Lanes<N>; 4],
+    /// θi, φi, θr, φr (rad) as given.
+    pub angles: [Lanes<N>; 4],
+}
+
+/// The geometry stages of a block: sines and cosines, the angles (ΦN when `phi_n`) and, with
+/// `PAIRS`, the Priest–Meier pairs.
+#[inline(always)]
+pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
+    b: &BlockIn<N>,
+    phi_n: bool,
+) -> Geom<N> {
+    let z = [0.0; N];
+    let mut g = Geom {
+        valid: [false; N],
+        out_of_range: [false; N],
+        facet: FacetLanes { v: [z; 10] },
+        pairs: [z; 4],
+        angles: [b.ti, b.pi, b.tr, b.pr],
+    };
+    // Stage 1: the four sine/cosine pairs.
+    let mut trig = TrigLanes { v: [z; 8] };
+    for j in 0..N {
+        trig.set(j, Trig::new::<M>(b.ti[j], b.pi[j], b.tr[j], b.pr[j]));
+        g.valid[j] = b.ti[j] < FRAC_PI_2 && b.tr[j] < FRAC_PI_2;
+        g.out_of_range[j] = !Trig::in_range::<M>(b.pi[j], b.pr[j]);
+    }
+    // Stage 2: the angles (θN, β, ΦN for eq3) and cosines.
+    for j in 0..N {
+        let scale = angles::phi_scale(b.pi[j], b.pr[j]);
+        let a = FacetAngles::from_trig::<M>(b.ti[j], &trig.get(j), scale, phi_n);
+        g.facet.set(j, a);
+    }
+    if PAIRS {
+        for j in 0..N {
+            let [ci, si, cr, sr] = angles::eta_pairs::<M>(&trig.get(j));
+            [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = [ci, si, cr, sr];
+        }
+    }
+    g
+}
+
+/// The geometry part of a block of explicit angle variables (the angle-variable entry point).
+pub(crate) fn geometry_of_variables<const N: usize>(v: &[AngleVariables; N]) -> Geom<N> {
+    let z = [0.0; N];
+    let mut g = Geom {
+        valid: [false; N],
+        out_of_range: [false; N],
+        facet: FacetLanes { v: [z; 10] },
+        pairs: [z; 4],
+        angles: [z; 4],
+    };
+    for j in 0..N {
+        g.valid[j] = v[j].theta_i < FRAC_PI_2 && v[j].theta_r < FRAC_PI_2;
+        g.facet.set(j, FacetAngles::from_variables(&v[j]));
+        let [ci, si, cr, sr] = v[j].eta_pairs();
+        [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = [ci, si, cr, sr];
+    }
+    g
+}
+
+/// What both output paths share, per element of a block: the geometry, the fallback mask, `q`,
+/// the scalar factor `g = f_s/R_F` and `f_v`, and `N²`.
+pub(crate) struct Front<'g, const N: usize> {
+    pub geo: &'g Geom<N>,
+    /// The element must take the one-geometry path.
+    pub fallback: [bool; N],
+    pub qr: Lanes<N>,
+    pub qi: Lanes<N>,
+    pub g: Lanes<N>,
+    pub fv: Lanes<N>,
+    pub n2r: Lanes<N>,
+    pub n2i: Lanes<N>,
+}
+
+/// The material stages of a block: `q` (eq. 10's transmitted wave number) and the scalar terms
+/// D, SO, `g`, `f_v` (eqs. 4, 3, 1, 6), for the index lanes of `b`.
+#[inline(always)]
+pub(crate) fn front<'g, M: Math, const N: usize>(
+    p: &ModelParams,
+    geo: &'g Geom<N>,
+    b: &IndexLanes<N>,
+) -> Front<'g, N> {
+    let z = [0.0; N];
+    let mut f = Front {
+        geo,
+        fallback: [false; N],
+        qr: z,
+        qi: z,
+        g: z,
+        fv: z,
+        n2r: b.n2r,
+        n2i: b.n2i,
+    };
+    for j in 0..N {
+        f.fallback[j] = b.index_ill[j] || geo.out_of_range[j];
+    }
+    // Stage 3: q = sqrt(N² − sin²β) on the principal branch; a real N² (k = 0, the same in
+    // every lane) needs one square root and no division.
+    if f.n2i.iter().all(|v| *v == 0.0) {
+        for j in 0..N {
+            let s2b = geo.facet.get(j).sin2_beta;
+            (f.qr[j], f.qi[j]) = fresnel::transmitted_q_real(f.n2r[j], s2b);
+            f.fallback[j] |= (f.n2r[j] - s2b).abs() < BRANCH_POINT_MIN;
+        }
+    } else {
+        for j in 0..N {
+            let s2b = geo.facet.get(j).sin2_beta;
+            (f.qr[j], f.qi[j]) = fresnel::transmitted_q_complex::<M>(f.n2r[j], f.n2i[j], s2b);
+            let zr = f.n2r[j] - s2b;
+            let z2 = M::mla(zr, zr, f.n2i[j] * f.n2i[j]);
+            f.fallback[j] |= z2 < BRANCH_POINT_MIN * BRANCH_POINT_MIN;
+        }
+    }
+    // Stage 4: D (eq. 4), SO (eq. 3), g and f_v (eqs. 1, 6).
+    for j in 0..N {
+        let a = geo.facet.get(j);
+        let (g, fv, d, _) = p.scalar_terms::<M>(&a);
+        f.g[j] = g;
+        f.fv[j] = fv;
+        // D so far down its tail that θN's last bit shows, or near the underflow limit.
+        let y = p.distribution.exponent(a.theta_n);
+        let da = p.distribution.a();
+        f.fallback[j] |= da > 0.0 && y > -750.0 && (d < TINY || -y > D_EXPONENT_MAX);
+    }
+    for j in 0..N {
+        f.fallback[j] = geo.valid[j] && f.fallback[j];
+    }
+    f
+}
+
+/// BRDF (F00), DoLP and, with `AOLP`, AoLP (rad) of a block for unpolarized input.
+///
+/// `F10 = g·B·cos2η_r` and `F20 = g·B·sin2η_r`, so the magnitude of the linear part is `|g·B|`
+/// and the DoLP needs no rotation; the AoLP needs η_r.
+#[inline(always)]
+pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
+    f: &mut Front<'_, N>,
+    out: &mut [Lanes<N>; 3],
+) {
+    let mut gb = [0.0; N];
+    for j in 0..N {
+        let c = f.geo.facet.get(j).cos_beta;
+        let [rs2, rp2, _, _] = fresnel::reflectances::<M>(f.n2r[j], f.n2i[j], c, f.qr[j], f.qi[j]);
+        let [a, b] = mueller::intensity_coefficients(rs2, rp2);
+        let g = terms::flush_subnormal(f.g[j], a);
+        let f00 = g * a + f.fv[j];
+        gb[j] = g * b;
+        let d = stokes::dolp(gb[j].abs(), f00);
+        f.fallback[j] |= f.geo.valid[j] && f00 > 0.0 && f00 < TINY;
+        out[0][j] = if f.geo.valid[j] { f00 } else { 0.0 };
+        out[1][j] = if f.geo.valid[j] { d } else { 0.0 };
+    }
+    if AOLP {
+        for j in 0..N {
+            let p = [
+                f.geo.pairs[0][j],
+                f.geo.pairs[1][j],
+                f.geo.pairs[2][j],
+                f.geo.pairs[3][j],
+            ];
+            let [_, _, cr2, sr2] = angles::rotations::<M>(p);
+            let a = stokes::aolp::<M>(cr2 * gb[j], sr2 * gb[j]);
+            out[2][j] = if f.geo.valid[j] && gb[j] != 0.0 {
+                a
+            } else {
+                0.0
+            };
+        }
+    }
+}
+
+/// The full pBRDF of a block, as 16 rows of lanes (row-major entry index first).
+#[inline(always)]
+pub(crate) fn mueller<M: Math, const N: usize>(f: &mut Front<'_, N>, out: &mut [Lanes<N>; 16]) {
+    let z = [0.0; N];
+    // Fresnel amplitudes and g·(A, B, C, S).
+    let mut gm = [z; 4];
+    for j in 0..N {
+        let c = f.geo.facet.get(j).cos_beta;
+        let (n2r, n2i, qr, qi) = (f.n2r[j], f.n2i[j], f.qr[j], f.qi[j]);
+        let [rs2, rp2, inv_s, inv_p] = fresnel::reflectances::<M>(n2r, n2i, c, qr, qi);
+        let amp = fresnel::amplitudes::<M>(n2r, n2i, c, qr, qi, inv_s, inv_p);
+        let coef = mueller::diagonal_coefficients::<M>(rs2, rp2, amp);
+        let g = terms::flush_subnormal(f.g[j], coef[0]);
+        for k in 0..4 {
+            gm[k][j] = g * coef[k];
+        }
+    }
+    // The rotations.
+    let mut rot = [z; 4];
+    for j in 0..N {
+        let p = [
+            f.geo.pairs[0][j],
+            f.geo.pairs[1][j],
+            f.geo.pairs[2][j],
+            f.geo.pairs[3][j],
+        ];
+        [rot[0][j], rot[1][j], rot[2][j], rot[3][j]] = angles::rotations::<M>(p);
+    }
+    // F = R(η_r)·(g·M_d)·R(−η_i) + f_v·diag(1, 0, 0, 0).
+    for j in 0..N {
+        let v = mueller::facet_pbrdf::<M>(
+            [gm[0][j], gm[1][j], gm[2][j], gm[3][j]],
+            f.fv[j],
+            [rot[0][j], rot[1][j], rot[2][j], rot[3][j]],
+        );
+        let valid = f.geo.valid[j];
+        f.fallback[j] |= valid && v[0] > 0.0 && v[0] < TINY;
+        for (o, x) in out.iter_mut().zip(v) {
+            o[j] = if valid { x } else { 0.0 };
+        }
+    }
+}

@@ -1,0 +1,951 @@
+//! The serial evaluator of the batch engine: blocks of [`BLOCK`] elements through the block
+//! kernel ([`crate::engine::block`]), at the best instruction set of the CPU, with the
+//! one-geometry path for the elements the kernel must not vectorize. `crate::engine::batch` runs
+//! it in parallel.
+
+#![allow(clippy::needless_range_loop)]
+
+use crate::engine::block::{self, BlockIn, Geom, IndexLanes, Lanes};
+use crate::engine::simd::{simd_level, SimdLevel};
+use crate::error::{Error, Result, MAX_INDEX};
+use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
+use crate::model::{Evaluation, Material, ModelParams};
+use crate::numeric::math::{FastPortable, Math};
+use crate::optics::fresnel::{index_squared, RefractiveIndex};
+use crate::optics::mueller::Mueller;
+use crate::optics::stokes::Stokes;
+
+/// Elements per block: every stage of the kernel runs over this many elements at a time.
+pub const BLOCK: usize = 32;
+
+/// A complex refractive index per element, `N_j = n_j + i·k_j`, validated (each as by
+/// [`RefractiveIndex::new`]): the engine evaluates element `j` with `N_j` instead of the
+/// material's own index — how one call covers materials × wavelengths × geometries.
+#[derive(Debug, Clone, Copy)]
+pub struct IndexColumns<'a> {
+    n: &'a [f64],
+    k: &'a [f64],
+}
+
+impl<'a> IndexColumns<'a> {
+    /// `n` and `k` of equal length.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`], or [`Error::InvalidParameterAt`] naming `n` or `k`, the value
+    /// and the element.
+    pub fn new(n: &'a [f64], k: &'a [f64]) -> Result<Self> {
+        crate::geometry::batch::check_len("k", k.len(), n.len())?;
+        for (i, (&nv, &kv)) in n.iter().zip(k).enumerate() {
+            if let Err(Error::InvalidParameter {
+                name,
+                value,
+                reason,
+            }) = RefractiveIndex::new(nv, kv)
+            {
+                return Err(Error::InvalidParameterAt {
+                    name,
+                    value,
+                    index: i,
+                    reason,
+                });
+            }
+        }
+        Ok(Self { n, k })
+    }
+
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.n.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.n.is_empty()
+    }
+
+    /// The index of element `i`.
+    pub fn get(&self, i: usize) -> RefractiveIndex {
+        RefractiveIndex::new(self.n[i], self.k[i]).expect("validated at construction")
+    }
+
+    fn slice(&self, start: usize, len: usize) -> Self {
+        Self {
+            n: &self.n[start..start + len],
+            k: &self.k[start..start + len],
+        }
+    }
+}
+
+/// Where the index of each element comes from.
+#[derive(Debug, Clone, Copy)]
+enum IndexSource<'a> {
+    /// The material's own: `N²` and whether it is outside the kernel's accurate domain.
+    Constant { n2r: f64, n2i: f64, ill: bool },
+    /// One per element.
+    PerElement(IndexColumns<'a>),
+}
+
+/// Whether an index is outside the kernel's accurate domain: the Fresnel amplitudes lose
+/// relative accuracy as `N² → 1` (`rs = (1 − N²)/(c + q)²`), with condition
+/// `(1 + sqrt(|N²| + 1))²/|1 − N²|` — at 100 or more such elements take the one-geometry path —
+/// and magnitudes of `N²` beyond `10^±100` are left to it too.
+#[inline(always)]
+fn index_ill(n2r: f64, n2i: f64) -> bool {
+    // Squares, not `hypot`: this runs per element for a per-element index (|N²| ≤ 2·10¹², so
+    // nothing overflows).
+    let n2_abs = (n2r * n2r + n2i * n2i).sqrt();
+    let c = 1.0 + (n2_abs + 1.0).sqrt();
+    let gap = ((1.0 - n2r) * (1.0 - n2r) + n2i * n2i).sqrt();
+    !(c * c < 100.0 * gap && n2_abs < 1e100 && n2_abs > 1e-100)
+}
+
+/// The fast evaluator of one material (see the module documentation). Cheap to build.
+///
+/// Its methods evaluate serially; `polbrdf::engine::batch` runs them in parallel over chunks.
+#[derive(Debug, Clone)]
+pub struct Kernel<'a> {
+    material: &'a Material,
+    params: ModelParams,
+    index: IndexSource<'a>,
+    level: SimdLevel,
+    /// Parameters outside the kernel's accurate domain (extreme magnitudes): every element
+    /// takes the one-geometry path.
+    scalar_only: bool,
+    /// Write full-Mueller results with non-temporal stores (for large outputs).
+    stream: bool,
+}
+
+impl<'a> Kernel<'a> {
+    /// The kernel of `material` at the best SIMD level of this CPU ([`simd_level`]).
+    pub fn new(material: &'a Material) -> Self {
+        Self::build(material, simd_level())
+    }
+
+    /// The kernel at a given SIMD level, or `None` when this CPU does not support it (for
+    /// tests and benchmarks comparing levels).
+    pub fn with_level(material: &'a Material, level: SimdLevel) -> Option<Self> {
+        level.is_supported().then(|| Self::build(material, level))
+    }
+
+    fn build(material: &'a Material, level: SimdLevel) -> Self {
+        let (n2r, n2i) = material.index().squared();
+        let p = *material.params();
+        let d = p.distribution;
+        let (inv_omega, two_over_tau) = p
+            .shadowing
+            .map_or((0.0, 0.0), |s| (1.0 / s.omega(), 2.0 / s.tau()));
+        let in_domain = d.a() < 1e200
+            && d.b() < 1e200
+            && inv_omega < 1e100
+            && two_over_tau < 1e100
+            && p.rho_v < 1e200
+            && p.rho_d < 1e200;
+        Self {
+            material,
+            params: p,
+            index: IndexSource::Constant {
+                n2r,
+                n2i,
+                ill: index_ill(n2r, n2i),
+            },
+            level,
+            scalar_only: !in_domain || (d.a() > 0.0 && d.a() < 1e-200),
+            stream: false,
+        }
+    }
+
+    /// Evaluate element `j` with index `index.get(j)` instead of the material's (positions are
+    /// those of the batch or slice passed to each method).
+    pub fn with_index(mut self, index: IndexColumns<'a>) -> Self {
+        self.index = IndexSource::PerElement(index);
+        self
+    }
+
+    /// With `on`, [`Kernel::mueller_into`] writes its results with non-temporal stores where the
+    /// CPU has them (x86-64): faster for outputs much larger than the caches, slower for
+    /// outputs read back at once.
+    pub fn streaming(mut self, on: bool) -> Self {
+        self.stream = on;
+        self
+    }
+
+    /// The SIMD level this kernel runs with.
+    pub fn level(&self) -> SimdLevel {
+        self.level
+    }
+
+    /// The material.
+    pub fn material(&self) -> &'a Material {
+        self.material
+    }
+
+    /// The pBRDF `F` (row-major, sr⁻¹) of elements `start .. start + out.len()` of `batch`.
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn mueller_into(&self, batch: &GeometryBatch<'_>, start: usize, out: &mut [[f64; 16]]) {
+        let src = Computed(BatchSource::new(batch, start, out.len()));
+        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
+    }
+
+    /// The scalar BRDF (sr⁻¹) and the DoLP for unpolarized input of elements
+    /// `start .. start + brdf.len()` of `batch`.
+    ///
+    /// # Panics
+    /// When `brdf` and `dolp` differ in length or the range exceeds the batch.
+    pub fn brdf_dolp_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        start: usize,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+    ) {
+        assert_eq!(brdf.len(), dolp.len(), "brdf and dolp lengths");
+        let src = Computed(BatchSource::new(batch, start, brdf.len()));
+        let index = self.index_at(start, brdf.len());
+        self.run_brdf_dolp::<_, BLOCK, false>(&src, index, brdf, dolp, &mut []);
+    }
+
+    /// As [`Kernel::brdf_dolp_into`], plus the AoLP (rad, in (−π/2, π/2], from the reflected
+    /// beam's s axis toward its p axis; 0 without linear polarization) for unpolarized input:
+    /// `Stokes::aolp` of `F·(1, 0, 0, 0)`.
+    ///
+    /// # Panics
+    /// When the three outputs differ in length or the range exceeds the batch.
+    pub fn brdf_dolp_aolp_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        start: usize,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+        aolp: &mut [f64],
+    ) {
+        assert_eq!(brdf.len(), dolp.len(), "brdf and dolp lengths");
+        assert_eq!(brdf.len(), aolp.len(), "brdf and aolp lengths");
+        let src = Computed(BatchSource::new(batch, start, brdf.len()));
+        let index = self.index_at(start, brdf.len());
+        self.run_brdf_dolp::<_, BLOCK, true>(&src, index, brdf, dolp, aolp);
+    }
+
+    /// The pBRDF at each geometry of a slice (already validated by construction).
+    ///
+    /// # Panics
+    /// When `out` is not as long as `geometries`.
+    pub fn mueller_of(&self, geometries: &[Geometry], out: &mut [Mueller]) {
+        assert_eq!(geometries.len(), out.len(), "output length");
+        let index = self.index_at(0, out.len());
+        self.run_mueller::<_, _, BLOCK>(&Computed(geometries), index, out);
+    }
+
+    /// The pBRDF at explicit angle variables (the angle-variable entry point,
+    /// [`Material::evaluate_angles`]), row-major.
+    ///
+    /// # Panics
+    /// When `out` is not as long as `vars`.
+    pub fn mueller_of_angles(&self, vars: &[AngleVariables], out: &mut [[f64; 16]]) {
+        assert_eq!(vars.len(), out.len(), "output length");
+        let index = self.index_at(0, out.len());
+        self.run_mueller::<_, _, BLOCK>(&Variables(vars), index, out);
+    }
+
+    /// The geometry stages of every element of `batch` (the part of the kernel that does not
+    /// depend on the material), computed once, for [`Kernel::mueller_prepared_into`] and
+    /// [`Kernel::brdf_dolp_prepared_into`] — of this kernel or of any other at the same SIMD
+    /// level, whatever its material or index. The results are exactly those of the unprepared
+    /// methods.
+    pub fn prepare(&self, batch: &GeometryBatch<'_>) -> Prepared {
+        self.prepare_range(batch, 0, batch.len())
+    }
+
+    /// [`Kernel::prepare`] of elements `start .. start + len`.
+    pub(crate) fn prepare_range(
+        &self,
+        batch: &GeometryBatch<'_>,
+        start: usize,
+        len: usize,
+    ) -> Prepared {
+        let src = BatchSource::new(batch, start, len);
+        let mut job = PrepareJob {
+            src: &src,
+            out: Prepared::with_capacity(len, self.level),
+        };
+        dispatch(self.level, &mut job);
+        job.out
+    }
+
+    /// As [`Kernel::mueller_into`], for elements `start .. start + out.len()` of a prepared
+    /// batch.
+    ///
+    /// # Panics
+    /// When `start` is not a multiple of [`BLOCK`], the range exceeds the batch, or `prepared`
+    /// was made at another SIMD level.
+    pub fn mueller_prepared_into(&self, prepared: &Prepared, start: usize, out: &mut [[f64; 16]]) {
+        let src = prepared.range(start, out.len(), self.level);
+        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
+    }
+
+    /// As [`Kernel::brdf_dolp_into`], for elements `start .. start + brdf.len()` of a prepared
+    /// batch.
+    ///
+    /// # Panics
+    /// As [`Kernel::mueller_prepared_into`], or when `brdf` and `dolp` differ in length.
+    pub fn brdf_dolp_prepared_into(
+        &self,
+        prepared: &Prepared,
+        start: usize,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+    ) {
+        assert_eq!(brdf.len(), dolp.len(), "brdf and dolp lengths");
+        let src = prepared.range(start, brdf.len(), self.level);
+        let index = self.index_at(start, brdf.len());
+        self.run_brdf_dolp::<_, BLOCK, false>(&src, index, brdf, dolp, &mut []);
+    }
+
+    /// The pBRDF `F` at one geometry: the kernel's code for a single element, for the lowest
+    /// latency (the batch methods are faster per element).
+    pub fn pbrdf(&self, g: &Geometry) -> Mueller {
+        let mut out = [Mueller::zero()];
+        let index = self.index_at(0, 1);
+        self.run_mueller::<_, _, 1>(&Computed(std::slice::from_ref(g)), index, &mut out);
+        out[0]
+    }
+
+    /// The scalar BRDF (sr⁻¹) and the DoLP for unpolarized input at one geometry (single-element
+    /// code, as [`Kernel::pbrdf`]).
+    pub fn brdf_dolp(&self, g: &Geometry) -> (f64, f64) {
+        let (mut b, mut d) = ([0.0], [0.0]);
+        let index = self.index_at(0, 1);
+        let src = Computed(std::slice::from_ref(g));
+        self.run_brdf_dolp::<_, 1, false>(&src, index, &mut b, &mut d, &mut []);
+        (b[0], d[0])
+    }
+
+    /// The index source for elements `start .. start + len`.
+    fn index_at(&self, start: usize, len: usize) -> IndexSource<'a> {
+        match self.index {
+            IndexSource::PerElement(cols) => {
+                assert!(
+                    start + len <= cols.len(),
+                    "range {start}..{start}+{len} beyond a per-element index of {}",
+                    cols.len()
+                );
+                IndexSource::PerElement(cols.slice(start, len))
+            }
+            c => c,
+        }
+    }
+
+    fn run_mueller<G: Blocks, O: MuellerOut, const N: usize>(
+        &self,
+        src: &G,
+        index: IndexSource<'_>,
+        out: &mut [O],
+    ) {
+        if self.scalar_only {
+            for (i, o) in out.iter_mut().enumerate() {
+                o.set(&src.reference(self, index, i).pbrdf.to_row_major());
+            }
+            return;
+        }
+        let mut job = MuellerJob::<G, O, N> {
+            kernel: self,
+            src,
+            index,
+            out,
+        };
+        dispatch(self.level_for(N), &mut job);
+    }
+
+    fn run_brdf_dolp<G: Blocks, const N: usize, const AOLP: bool>(
+        &self,
+        src: &G,
+        index: IndexSource<'_>,
+        brdf: &mut [f64],
+        dolp: &mut [f64],
+        aolp: &mut [f64],
+    ) {
+        if self.scalar_only {
+            for i in 0..brdf.len() {
+                let e = src.reference(self, index, i);
+                (brdf[i], dolp[i]) = (e.brdf(), e.dolp());
+                if AOLP {
+                    aolp[i] = e.reflect(&Stokes::unpolarized()).aolp();
+                }
+            }
+            return;
+        }
+        let mut job = BrdfDolpJob::<G, N, AOLP> {
+            kernel: self,
+            src,
+            index,
+            brdf,
+            dolp,
+            aolp,
+        };
+        dispatch(self.level_for(N), &mut job);
+    }
+
+    /// The level to run blocks of `n` elements with: a single element is scalar code, where the
+    /// AVX2+FMA build is the fastest.
+    fn level_for(&self, n: usize) -> SimdLevel {
+        if n == 1 && self.level == SimdLevel::Avx512 {
+            SimdLevel::Avx2
+        } else {
+            self.level
+        }
+    }
+}
+
+impl IndexSource<'_> {
+    /// The index of element `i`.
+    fn get(&self, i: usize, material: &Material) -> RefractiveIndex {
+        match self {
+            IndexSource::Constant { .. } => material.index(),
+            IndexSource::PerElement(cols) => cols.get(i),
+        }
+    }
+
+    /// `N²` and the domain flag of elements `start .. start + len` (the rest of the block
+    /// repeats element `start`).
+    #[inline(always)]
+    fn lanes<const N: usize>(&self, start: usize, len: usize) -> IndexLanes<N> {
+        match *self {
+            IndexSource::Constant { n2r, n2i, ill } => IndexLanes {
+                n2r: [n2r; N],
+                n2i: [n2i; N],
+                index_ill: [ill; N],
+            },
+            IndexSource::PerElement(cols) => {
+                let mut b = IndexLanes {
+                    n2r: [0.0; N],
+                    n2i: [0.0; N],
+                    index_ill: [false; N],
+                };
+                for j in 0..N {
+                    let i = start + if j < len { j } else { 0 };
+                    (b.n2r[j], b.n2i[j]) = index_squared(cols.n[i], cols.k[i]);
+                }
+                for j in 0..N {
+                    b.index_ill[j] = index_ill(b.n2r[j], b.n2i[j]);
+                }
+                b
+            }
+        }
+    }
+}
+
+// Compile-time check that the bound the index columns are validated against is the one the
+// domain test assumes (|N²| ≤ 2·10¹² < 10¹⁰⁰).
+const _: () = assert!(MAX_INDEX <= 1e6);
+
+// -------------------------------------------------------------------------------------------
+// Inputs: angles by index; the geometry part of a block, computed or prepared.
+
+/// Validated angles (θi, φi, θr, φr) in radians, by index.
+trait Source {
+    fn get(&self, i: usize) -> [f64; 4];
+
+    /// Elements `start .. start + N` into `b`.
+    #[inline(always)]
+    fn load_block<const N: usize>(&self, start: usize, b: &mut BlockIn<N>) {
+        for j in 0..N {
+            [b.ti[j], b.pi[j], b.tr[j], b.pr[j]] = self.get(start + j);
+        }
+    }
+}
+
+struct BatchSource<'a> {
+    cols: [&'a [f64]; 4],
+}
+
+impl<'a> BatchSource<'a> {
+    fn new(batch: &GeometryBatch<'a>, start: usize, len: usize) -> Self {
+        let cols = batch.columns();
+        assert!(
+            start.checked_add(len).is_some_and(|end| end <= batch.len()),
+            "range {start}..{start}+{len} beyond a batch of {}",
+            batch.len()
+        );
+        Self {
+            cols: cols.map(|c| &c[start..start + len]),
+        }
+    }
+}
+
+impl Source for BatchSource<'_> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> [f64; 4] {
+        [
+            self.cols[0][i],
+            self.cols[1][i],
+            self.cols[2][i],
+            self.cols[3][i],
+        ]
+    }
+
+    #[inline(always)]
+    fn load_block<const N: usize>(&self, start: usize, b: &mut BlockIn<N>) {
+        let r = start..start + N;
+        b.ti.copy_from_slice(&self.cols[0][r.clone()]);
+        b.pi.copy_from_slice(&self.cols[1][r.clone()]);
+        b.tr.copy_from_slice(&self.cols[2][r.clone()]);
+        b.pr.copy_from_slice(&self.cols[3][r]);
+    }
+}
+
+impl Source for &[Geometry] {
+    #[inline(always)]
+    fn get(&self, i: usize) -> [f64; 4] {
+        let g = &self[i];
+        [g.theta_i(), g.phi_i(), g.theta_r(), g.phi_r()]
+    }
+}
+
+/// Elements `start .. start + len` (len ≤ N) of `src`; the rest of the block repeats element
+/// `start` (valid input, results discarded).
+#[inline(always)]
+fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize) -> BlockIn<N> {
+    let mut b = BlockIn::<N>::zeroed();
+    if len == N {
+        src.load_block(start, &mut b);
+    } else {
+        for j in 0..N {
+            [b.ti[j], b.pi[j], b.tr[j], b.pr[j]] = src.get(start + if j < len { j } else { 0 });
+        }
+    }
+    for j in 0..N {
+        // `+ 0.0` turns −0.0 into +0.0, as `Geometry` does.
+        b.ti[j] += 0.0;
+        b.tr[j] += 0.0;
+    }
+    b
+}
+
+/// Where the geometry part of each block comes from, and the one-geometry path of an element.
+trait Blocks {
+    /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`.
+    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
+        &self,
+        start: usize,
+        len: usize,
+        phi_n: bool,
+    ) -> Geom<N>;
+
+    /// Element `i` by the one-geometry path.
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation;
+}
+
+/// Geometries whose geometry stages the kernel computes.
+struct Computed<S>(S);
+
+impl<S: Source> Blocks for Computed<S> {
+    #[inline(always)]
+    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
+        &self,
+        start: usize,
+        len: usize,
+        phi_n: bool,
+    ) -> Geom<N> {
+        block::geometry::<M, N, PAIRS>(&load::<S, N>(&self.0, start, len), phi_n)
+    }
+
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
+        let [ti, pi, tr, pr] = self.0.get(i);
+        k.material.evaluate_with_index(
+            &Geometry::new_unchecked(ti + 0.0, pi, tr + 0.0, pr),
+            index.get(i, k.material),
+        )
+    }
+}
+
+/// Explicit angle variables (the angle-variable entry point).
+struct Variables<'v>(&'v [AngleVariables]);
+
+impl Blocks for Variables<'_> {
+    #[inline(always)]
+    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
+        &self,
+        start: usize,
+        len: usize,
+        _phi_n: bool,
+    ) -> Geom<N> {
+        let v: [AngleVariables; N] =
+            std::array::from_fn(|j| self.0[start + if j < len { j } else { 0 }]);
+        block::geometry_of_variables(&v)
+    }
+
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
+        k.material
+            .evaluate_angles_with_index(&self.0[i], index.get(i, k.material))
+    }
+}
+
+/// The geometry stages of a batch, computed once ([`Kernel::prepare`]): what does not depend
+/// on the material, per element, in the blocks the kernel evaluates.
+#[derive(Clone)]
+pub struct Prepared {
+    level: SimdLevel,
+    len: usize,
+    blocks: Vec<Geom<BLOCK>>,
+}
+
+impl std::fmt::Debug for Prepared {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Prepared")
+            .field("level", &self.level)
+            .field("len", &self.len)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Prepared {
+    fn with_capacity(n: usize, level: SimdLevel) -> Self {
+        Self {
+            level,
+            len: 0,
+            blocks: Vec::with_capacity(n.div_ceil(BLOCK)),
+        }
+    }
+
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The SIMD level the geometry was computed with (kernels of this level use it).
+    pub fn level(&self) -> SimdLevel {
+        self.level
+    }
+
+    /// `other`'s elements after this one's (this one a whole number of blocks long).
+    pub(crate) fn append(&mut self, other: Prepared) {
+        assert_eq!(self.level, other.level, "prepared at one SIMD level");
+        assert_eq!(self.len % BLOCK, 0, "appended after whole blocks");
+        self.blocks.extend(other.blocks);
+        self.len += other.len;
+    }
+
+    /// An empty batch prepared at `level`.
+    pub(crate) fn empty(level: SimdLevel) -> Self {
+        Self::with_capacity(0, level)
+    }
+
+    fn push(&mut self, g: Geom<BLOCK>, len: usize) {
+        self.blocks.push(g);
+        self.len += len;
+    }
+
+    fn range(&self, start: usize, len: usize, level: SimdLevel) -> PreparedRange<'_> {
+        assert_eq!(
+            self.level, level,
+            "a batch prepared at one SIMD level evaluated at another"
+        );
+        assert!(
+            start % BLOCK == 0 && start + len <= self.len,
+            "range {start}..{start}+{len} of a prepared batch of {} (start a multiple of {BLOCK})",
+            self.len
+        );
+        PreparedRange {
+            p: self,
+            first: start / BLOCK,
+        }
+    }
+}
+
+/// The blocks of a prepared batch from block `first` on.
+struct PreparedRange<'p> {
+    p: &'p Prepared,
+    first: usize,
+}
+
+impl Blocks for PreparedRange<'_> {
+    #[inline(always)]
+    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
+        &self,
+        start: usize,
+        _len: usize,
+        _phi_n: bool,
+    ) -> Geom<N> {
+        // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
+        // partial last block was padded when prepared, as `load` pads.)
+        assert!(
+            N == BLOCK && start % BLOCK == 0,
+            "prepared blocks of {BLOCK}"
+        );
+        let g = &self.p.blocks[self.first + start / BLOCK];
+        let z = [0.0; N];
+        let mut out = Geom {
+            valid: [false; N],
+            out_of_range: [false; N],
+            facet: block::FacetLanes::from_columns([z; 10]),
+            pairs: [z; 4],
+            angles: [z; 4],
+        };
+        out.valid.copy_from_slice(&g.valid);
+        out.out_of_range.copy_from_slice(&g.out_of_range);
+        out.facet.copy_from(&g.facet);
+        for (o, i) in out.pairs.iter_mut().zip(&g.pairs) {
+            o.copy_from_slice(i);
+        }
+        for (o, i) in out.angles.iter_mut().zip(&g.angles) {
+            o.copy_from_slice(i);
+        }
+        out
+    }
+
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
+        let g = &self.p.blocks[self.first + i / BLOCK];
+        let a = |c: usize| g.angles[c][i % BLOCK];
+        k.material.evaluate_with_index(
+            &Geometry::new_unchecked(a(0), a(1), a(2), a(3)),
+            index.get(i, k.material),
+        )
+    }
+}
+
+/// Where one 4×4 result goes.
+trait MuellerOut: Sized {
+    fn set(&mut self, v: &[f64; 16]);
+
+    /// Copies a block of results out; `stream`: with non-temporal stores where possible (for
+    /// outputs much larger than the caches, which are then not read back soon).
+    #[inline(always)]
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]], _stream: bool) {
+        for (o, v) in dst.iter_mut().zip(src) {
+            o.set(v);
+        }
+    }
+}
+
+impl MuellerOut for [f64; 16] {
+    #[inline(always)]
+    fn set(&mut self, v: &[f64; 16]) {
+        *self = *v;
+    }
+
+    #[inline(always)]
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) {
+        #[cfg(target_arch = "x86_64")]
+        if stream && dst.as_ptr() as usize % 16 == 0 {
+            use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
+            let n = dst.len().min(src.len());
+            let (d, s) = (dst.as_mut_ptr().cast::<f64>(), src.as_ptr().cast::<f64>());
+            for i in (0..16 * n).step_by(2) {
+                // SAFETY: `d` and `s` are valid for 16·n f64 each, `d` is 16-byte aligned (so is
+                // every even offset from it), and SSE2 is part of x86-64.
+                unsafe { _mm_stream_pd(d.add(i), _mm_loadu_pd(s.add(i))) };
+            }
+            return;
+        }
+        let n = dst.len().min(src.len());
+        dst[..n].copy_from_slice(&src[..n]);
+    }
+}
+
+/// Orders non-temporal stores before what follows (they are weakly ordered).
+#[inline(always)]
+fn store_fence() {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: SSE is part of x86-64.
+    unsafe {
+        std::arch::x86_64::_mm_sfence()
+    };
+}
+
+impl MuellerOut for Mueller {
+    #[inline(always)]
+    fn set(&mut self, v: &[f64; 16]) {
+        *self = Mueller::from_row_major(v);
+    }
+}
+
+// -------------------------------------------------------------------------------------------
+// The jobs: blocks through the kernel, fallback elements through the one-geometry path; each
+// compiled once per instruction set and run at the kernel's ([`dispatch`]).
+
+/// A piece of work generic over the elementary-function backend.
+trait Job {
+    fn run<M: Math>(&mut self);
+}
+
+/// Runs `job` with the code of `level` (the CPU supports it: a kernel is only built at a
+/// supported level).
+fn dispatch<J: Job>(level: SimdLevel, job: &mut J) {
+    match level {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: a kernel of this level is only built when the CPU supports it.
+        SimdLevel::Avx512 => unsafe { x86::avx512(job) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above.
+        SimdLevel::Avx2 => unsafe { x86::avx2(job) },
+        _ => job.run::<FastPortable>(),
+    }
+}
+
+struct MuellerJob<'k, 'a, 's, 'o, G, O, const N: usize> {
+    kernel: &'k Kernel<'a>,
+    src: &'s G,
+    index: IndexSource<'k>,
+    out: &'o mut [O],
+}
+
+impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, O, N> {
+    #[inline(always)]
+    fn run<M: Math>(&mut self) {
+        let k = self.kernel;
+        let phi_n = k.params.uses_phi_n();
+        let mut rows = [[0.0; N]; 16];
+        let mut staged = [[0.0; 16]; N];
+        for (blk, dst) in self.out.chunks_mut(N).enumerate() {
+            let start = blk * N;
+            let geo = self.src.geometry::<M, N, true>(start, dst.len(), phi_n);
+            let idx = self.index.lanes::<N>(start, dst.len());
+            let mut front = block::front::<M, N>(&k.params, &geo, &idx);
+            block::mueller::<M, N>(&mut front, &mut rows);
+            // Transpose into a row-major staging block (in L1), then copy out contiguously.
+            for e in 0..16 {
+                for j in 0..N {
+                    staged[j][e] = rows[e][j];
+                }
+            }
+            for j in 0..dst.len() {
+                if front.fallback[j] {
+                    staged[j] = self
+                        .src
+                        .reference(k, self.index, start + j)
+                        .pbrdf
+                        .to_row_major();
+                }
+            }
+            O::write_block(dst, &staged, k.stream);
+        }
+        if k.stream {
+            store_fence();
+        }
+    }
+}
+
+/// BRDF, DoLP and (with `AOLP`) AoLP; `aolp` is empty without `AOLP`.
+struct BrdfDolpJob<'k, 'a, 's, 'o, G, const N: usize, const AOLP: bool> {
+    kernel: &'k Kernel<'a>,
+    src: &'s G,
+    index: IndexSource<'k>,
+    brdf: &'o mut [f64],
+    dolp: &'o mut [f64],
+    aolp: &'o mut [f64],
+}
+
+impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_, '_, G, N, AOLP> {
+    #[inline(always)]
+    fn run<M: Math>(&mut self) {
+        let k = self.kernel;
+        let phi_n = k.params.uses_phi_n();
+        let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
+        let n = self.brdf.len();
+        for start in (0..n).step_by(N) {
+            let len = N.min(n - start);
+            let geo = self.src.geometry::<M, N, AOLP>(start, len, phi_n);
+            let idx = self.index.lanes::<N>(start, len);
+            let mut front = block::front::<M, N>(&k.params, &geo, &idx);
+            block::brdf_dolp::<M, N, AOLP>(&mut front, &mut lanes);
+            self.brdf[start..start + len].copy_from_slice(&lanes[0][..len]);
+            self.dolp[start..start + len].copy_from_slice(&lanes[1][..len]);
+            if AOLP {
+                self.aolp[start..start + len].copy_from_slice(&lanes[2][..len]);
+            }
+            for j in 0..len {
+                if front.fallback[j] {
+                    let e = self.src.reference(k, self.index, start + j);
+                    (self.brdf[start + j], self.dolp[start + j]) = (e.brdf(), e.dolp());
+                    if AOLP {
+                        self.aolp[start + j] = e.reflect(&Stokes::unpolarized()).aolp();
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The geometry stages of a batch, block by block, into a [`Prepared`].
+struct PrepareJob<'s, 'b> {
+    src: &'s BatchSource<'b>,
+    out: Prepared,
+}
+
+impl Job for PrepareJob<'_, '_> {
+    #[inline(always)]
+    fn run<M: Math>(&mut self) {
+        let n = self.src.cols[0].len();
+        for start in (0..n).step_by(BLOCK) {
+            let len = BLOCK.min(n - start);
+            let b = load::<_, BLOCK>(self.src, start, len);
+            // ΦN always: the prepared geometry serves every material, eq3 ones too.
+            let geo = block::geometry::<M, BLOCK, true>(&b, true);
+            self.out.push(geo, len);
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod x86 {
+    //! The jobs compiled for AVX2+FMA and for AVX-512.
+
+    use super::Job;
+    use crate::numeric::math::FastFused;
+
+    /// # Safety
+    /// The CPU must support AVX-512 F/DQ/VL, AVX2 and FMA.
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
+    pub(super) unsafe fn avx512<J: Job>(job: &mut J) {
+        job.run::<FastFused>()
+    }
+
+    /// # Safety
+    /// The CPU must support AVX2 and FMA.
+    #[target_feature(enable = "avx2,fma")]
+    pub(super) unsafe fn avx2<J: Job>(job: &mut J) {
+        job.run::<FastFused>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::numeric::math::FastUnfused;
+    use crate::numeric::sample::SplitMix64;
+
+    #[test]
+    fn presets_never_take_the_one_geometry_path() {
+        // "For ordinary materials and geometries no element takes that path."
+        let mut rng = SplitMix64::new(1);
+        for preset in crate::model::presets::all() {
+            let m = preset.spec.build().unwrap();
+            let k = Kernel::new(&m);
+            for _ in 0..1000 {
+                let mut b = BlockIn::<BLOCK>::zeroed();
+                for j in 0..BLOCK {
+                    b.ti[j] = rng.range(0.0, 89.9f64.to_radians());
+                    b.pi[j] = rng.range(0.0, 2.0 * std::f64::consts::PI);
+                    b.tr[j] = rng.range(0.0, 89.9f64.to_radians());
+                    b.pr[j] = rng.range(0.0, 2.0 * std::f64::consts::PI);
+                }
+                let idx = k.index.lanes::<BLOCK>(0, BLOCK);
+                let geo = block::geometry::<FastUnfused, BLOCK, true>(&b, false);
+                let mut rows = [[0.0; BLOCK]; 16];
+                let mut f = block::front::<FastUnfused, BLOCK>(&k.params, &geo, &idx);
+                block::mueller::<FastUnfused, BLOCK>(&mut f, &mut rows);
+                assert!(!f.fallback.iter().any(|f| *f), "{}", preset.name);
+                let mut lanes = [[0.0; BLOCK]; 3];
+                let mut f = block::front::<FastUnfused, BLOCK>(&k.params, &geo, &idx);
+                block::brdf_dolp::<FastUnfused, BLOCK, true>(&mut f, &mut lanes);
+                assert!(!f.fallback.iter().any(|f| *f), "{}", preset.name);
+            }
+        }
+    }
+}

@@ -1,0 +1,316 @@
+//! The angle variables of the model (θN, β, ΦN, η_i, η_r; docs/model.md §1, §4) in closed form,
+//! written once for both paths: [`Geometry::angle_variables`](crate::Geometry::angle_variables)
+//! and `Material::evaluate` call these functions with the standard library's elementary
+//! functions, the batch engine with its polynomial ones, across a block of elements.
+//!
+//! Everything follows from four sine/cosine pairs ([`Trig`]) — of θi, θr, `Δ/2` with
+//! `Δ = φr − φi`, and `u = (θi − θr)/2` — by algebra arranged without cancellation:
+//! `sin(θi − θr) = 2 sin u cos u`, `1 − cosΔ = 2 sin²(Δ/2)`, `sinΔ = 2 sin(Δ/2) cos(Δ/2)`, and for
+//! the half vector `s = w_i + w_r` (docs/model.md §9.2)
+//! `|s_xy|² = 4(cos²v sin²u + sinθi sinθr cos²(Δ/2))` with `cos v = cos((θi + θr)/2) = cos(θr + u)`,
+//! `s_z = cosθi + cosθr`, `cosβ = |s|/2`, `sin²β = sin²u + sinθi sinθr sin²(Δ/2)`.
+
+use crate::numeric::math::{Math, Std};
+
+/// Sines and cosines of θi, θr, `Δ/2` (`Δ = φr − φi`) and `u = (θi − θr)/2`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Trig {
+    /// sin θi, cos θi.
+    pub si: f64,
+    /// cos θi.
+    pub ci: f64,
+    /// sin θr.
+    pub sr: f64,
+    /// cos θr.
+    pub cr: f64,
+    /// sin(Δ/2).
+    pub sh: f64,
+    /// cos(Δ/2).
+    pub ch: f64,
+    /// sin u.
+    pub su: f64,
+    /// cos u.
+    pub cu: f64,
+}
+
+impl Trig {
+    /// From the four angles (rad). `|Δ/2|` beyond the backend's accurate range
+    /// ([`Math::SINCOS_MAX`]) is replaced by 0 — the batch engine sends such elements to the
+    /// one-geometry path ([`Trig::in_range`]).
+    #[inline(always)]
+    pub fn new<M: Math>(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
+        let h = 0.5 * (phi_r - phi_i);
+        let h = if h.abs() <= M::SINCOS_MAX { h } else { 0.0 };
+        let (si, ci) = M::sincos(theta_i);
+        let (sr, cr) = M::sincos(theta_r);
+        let (sh, ch) = M::sincos(h);
+        let (su, cu) = M::sincos(0.5 * (theta_i - theta_r));
+        Self {
+            si,
+            ci,
+            sr,
+            cr,
+            sh,
+            ch,
+            su,
+            cu,
+        }
+    }
+
+    /// Whether backend `M` computes `sin(Δ/2)` of these azimuths to full accuracy.
+    #[inline(always)]
+    pub fn in_range<M: Math>(phi_i: f64, phi_r: f64) -> bool {
+        (0.5 * (phi_r - phi_i)).abs() <= M::SINCOS_MAX
+    }
+}
+
+/// The half vector `s = w_i + w_r` (unnormalized) in the frame of the plane of incidence.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfVector {
+    /// `s∥ = sinθi + sinθr cosΔ = 2 cos v sin u + 2 sinθr cos²(Δ/2)` (along the plane of
+    /// incidence).
+    pub along: f64,
+    /// `s⊥ = sinθr sinΔ` (across it).
+    pub across: f64,
+    /// `s_z = cosθi + cosθr`.
+    pub sz: f64,
+    /// `|s_xy|`.
+    pub rho: f64,
+    /// `|s|²`.
+    pub s2: f64,
+}
+
+/// The half vector of a geometry (module documentation).
+#[inline(always)]
+pub fn half_vector<M: Math>(t: &Trig) -> HalfVector {
+    let cosv = M::mla(t.cr, t.cu, -(t.sr * t.su));
+    let dif = cosv * t.su;
+    let ch2 = t.ch * t.ch;
+    let sz = t.ci + t.cr;
+    let rho2 = 4.0 * M::mla(dif, dif, t.si * t.sr * ch2);
+    HalfVector {
+        along: 2.0 * M::mla(t.sr, ch2, dif),
+        across: 2.0 * t.sr * (t.sh * t.ch),
+        sz,
+        rho: rho2.sqrt(),
+        s2: M::mla(sz, sz, rho2),
+    }
+}
+
+/// `sin²β = sin²u + sinθi sinθr sin²(Δ/2)` (β the local incidence angle on the facet).
+#[inline(always)]
+pub fn sin2_beta<M: Math>(t: &Trig) -> f64 {
+    M::mla(t.su, t.su, t.si * t.sr * (t.sh * t.sh))
+}
+
+/// `θN = acos(h·z) = atan2(|s_xy|, s_z)` (eqs. 1–4).
+#[inline(always)]
+pub fn theta_n<M: Math>(h: &HalfVector) -> f64 {
+    M::atan2_pos(h.rho, h.sz)
+}
+
+/// `cosβ = |s|/2` and `β = atan2(sinβ, cosβ)` (eqs. 1, 3, 11).
+#[inline(always)]
+pub fn beta<M: Math>(h: &HalfVector, sin2_beta: f64) -> (f64, f64) {
+    let cos_beta = 0.5 * h.s2.sqrt();
+    (M::atan2_pos(sin2_beta.sqrt(), cos_beta), cos_beta)
+}
+
+/// `ΦN` (eq. 3): the angle between the plane (z, h) and the plane of incidence,
+/// `atan2(|s⊥|, |s∥|)` folded into [0, π/2] — and 0 when `|s_xy|` is at rounding level,
+/// `|s_xy| ≤ 8ε·(sinθi + sinθr)·max(1, |φi|, |φr|)` (docs/model.md §9.3): an azimuth carries a
+/// rounding error of order ulp(|φ|), which tilts a specular half vector by as much.
+#[inline(always)]
+pub fn phi_n<M: Math>(h: &HalfVector, t: &Trig, phi_scale: f64) -> f64 {
+    let level = 8.0 * f64::EPSILON * (t.si + t.sr) * phi_scale;
+    let d = M::atan2_pos(h.across.abs(), h.along.abs());
+    if h.rho > level {
+        d.min(std::f64::consts::FRAC_PI_2)
+    } else {
+        0.0
+    }
+}
+
+/// The rounding scale of the azimuths for [`phi_n`]: `max(1, |φi|, |φr|)`.
+#[inline(always)]
+pub fn phi_scale(phi_i: f64, phi_r: f64) -> f64 {
+    phi_i.abs().max(phi_r.abs()).max(1.0)
+}
+
+/// The signed Priest–Meier angles as unnormalized pairs `[c_i, s_i, c_r, s_r]`,
+/// `(cos η, sin η) ∝ (c, s)` (eq. 11, docs/model.md §4): half the closed forms
+/// `sin2β·cos η_i = sin(θi − θr) + 2 cosθi sinθr sin²(Δ/2)`, `sin2β·sin η_i = sinθr sinΔ`,
+/// `sin2β·cos η_r = sin(θr − θi) + 2 sinθi cosθr sin²(Δ/2)`, `sin2β·sin η_r = sinθi sinΔ`.
+/// At β = 0 (retro-reflection, within 1e-75 of it, where F no longer depends on the direction
+/// of approach) the facet frame is the incident one: `η_i = 0`, `(cos η_r, sin η_r) ∝
+/// (−cosΔ, cosθr sinΔ)`.
+#[inline(always)]
+pub fn eta_pairs<M: Math>(t: &Trig) -> [f64; 4] {
+    let sc = t.su * t.cu;
+    let shc = t.sh * t.ch;
+    let sh2 = t.sh * t.sh;
+    let c_i = M::mla(t.ci * t.sr, sh2, sc);
+    let s_i = t.sr * shc;
+    let c_r = M::mla(t.si * t.cr, sh2, -sc);
+    let s_r = t.si * shc;
+    let regular = M::mla(c_i, c_i, s_i * s_i) > 1e-150;
+    if regular {
+        [c_i, s_i, c_r, s_r]
+    } else {
+        [1.0, 0.0, M::mla(2.0, sh2, -1.0), 2.0 * t.cr * shc]
+    }
+}
+
+/// `[cos2η_i, sin2η_i, cos2η_r, sin2η_r]` from the pairs of [`eta_pairs`]:
+/// `(cos2η, sin2η) = (c² − s², 2cs)/(c² + s²)` — the Mueller rotators need no angle.
+#[inline(always)]
+pub fn rotations<M: Math>([c_i, s_i, c_r, s_r]: [f64; 4]) -> [f64; 4] {
+    let ni = M::mla(c_i, c_i, s_i * s_i);
+    let nr = M::mla(c_r, c_r, s_r * s_r);
+    let inv = 1.0 / (ni * nr);
+    let (inv_i, inv_r) = (nr * inv, ni * inv);
+    [
+        M::mla(c_i, c_i, -(s_i * s_i)) * inv_i,
+        2.0 * c_i * s_i * inv_i,
+        M::mla(c_r, c_r, -(s_r * s_r)) * inv_r,
+        2.0 * c_r * s_r * inv_r,
+    ]
+}
+
+/// What the model's scalar terms and Fresnel amplitudes need of one geometry: the angles and the
+/// cosines, computed once per element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacetAngles {
+    /// θi (rad; in the azimuth factor of eq. 3).
+    pub theta_i: f64,
+    /// cos θi.
+    pub cos_i: f64,
+    /// cos θr.
+    pub cos_r: f64,
+    /// θN (rad).
+    pub theta_n: f64,
+    /// β (rad).
+    pub beta: f64,
+    /// ΦN (rad), 0 unless asked for.
+    pub phi_n: f64,
+    /// cos β.
+    pub cos_beta: f64,
+    /// sin²β.
+    pub sin2_beta: f64,
+    /// `s_z = cosθi + cosθr`.
+    pub sz: f64,
+    /// `|s|²`, so that `cos²θN = s_z²/|s|²`.
+    pub s2: f64,
+}
+
+impl FacetAngles {
+    /// From a geometry's sines and cosines; ΦN only when `with_phi_n` (the eq. 3 azimuth factor
+    /// is the only term that uses it).
+    #[inline(always)]
+    pub fn from_trig<M: Math>(theta_i: f64, t: &Trig, phi_scale: f64, with_phi_n: bool) -> Self {
+        let h = half_vector::<M>(t);
+        let sin2_beta = sin2_beta::<M>(t);
+        let (beta, cos_beta) = beta::<M>(&h, sin2_beta);
+        Self {
+            theta_i,
+            cos_i: t.ci,
+            cos_r: t.cr,
+            theta_n: theta_n::<M>(&h),
+            beta,
+            phi_n: if with_phi_n {
+                phi_n::<M>(&h, t, phi_scale)
+            } else {
+                0.0
+            },
+            cos_beta,
+            sin2_beta,
+            sz: h.sz,
+            s2: h.s2,
+        }
+    }
+
+    /// From explicit angle variables (the angle-variable entry point): the cosines of the given
+    /// angles, and `|s|² = s_z²/cos²θN` (∞ at θN = π/2, where cos²θN = 0).
+    pub fn from_variables(v: &AngleVariables) -> Self {
+        let (ci, cr) = (v.theta_i.cos(), v.theta_r.cos());
+        let (sb, cb) = v.beta.sin_cos();
+        let sz = ci + cr;
+        let cn = v.theta_n.cos();
+        Self {
+            theta_i: v.theta_i,
+            cos_i: ci,
+            cos_r: cr,
+            theta_n: v.theta_n,
+            beta: v.beta,
+            phi_n: v.phi_n,
+            cos_beta: cb.max(0.0),
+            sin2_beta: sb * sb,
+            sz,
+            s2: sz * sz / (cn * cn),
+        }
+    }
+}
+
+/// The angle variables the model is written in (radians).
+///
+/// This is the "angle-variable entry point" of docs/model.md §6:
+/// [`crate::Material::evaluate_angles`] takes one directly, so a caller can set θN as a free
+/// roughness variable at in-plane specular geometry, as the paper's Fig. 2 does.
+/// [`crate::Geometry::angle_variables`] computes it from two directions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AngleVariables {
+    /// Incidence zenith angle θi (eq. 1).
+    pub theta_i: f64,
+    /// Viewing zenith angle θr (eq. 1).
+    pub theta_r: f64,
+    /// Local incidence angle on the facet, β = acos(w_i·h) (eqs. 1, 3, 11).
+    pub beta: f64,
+    /// Facet-normal zenith angle θN = acos(h·z) (eqs. 1–4).
+    pub theta_n: f64,
+    /// Facet-normal azimuth relative to the plane of incidence, folded into [0, π/2] (eq. 3).
+    pub phi_n: f64,
+    /// Signed rotation from the incident beam's s axis to the facet's s axis (eq. 11).
+    pub eta_i: f64,
+    /// Signed rotation from the reflected beam's s axis to the facet's s axis (eq. 11).
+    pub eta_r: f64,
+}
+
+impl AngleVariables {
+    /// Angle variables of an in-plane specular configuration with the facet tilted by θN, as in
+    /// the paper's Fig. 2: `θi = θr = β = theta`, `ΦN = 0`, `η_i = η_r = 0`.
+    pub fn in_plane_specular(theta: f64, theta_n: f64) -> Self {
+        Self {
+            theta_i: theta,
+            theta_r: theta,
+            beta: theta,
+            theta_n,
+            phi_n: 0.0,
+            eta_i: 0.0,
+            eta_r: 0.0,
+        }
+    }
+
+    /// The angle variables of a geometry above the horizon (both zenith angles below π/2), by
+    /// the closed forms of this module with the standard library's functions.
+    pub fn of(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
+        let t = Trig::new::<Std>(theta_i, phi_i, theta_r, phi_r);
+        let a = FacetAngles::from_trig::<Std>(theta_i, &t, phi_scale(phi_i, phi_r), true);
+        let [c_i, s_i, c_r, s_r] = eta_pairs::<Std>(&t);
+        Self {
+            theta_i,
+            theta_r,
+            beta: a.beta,
+            theta_n: a.theta_n,
+            phi_n: a.phi_n,
+            eta_i: s_i.atan2(c_i),
+            eta_r: s_r.atan2(c_r),
+        }
+    }
+
+    /// `[cos η_i, sin η_i, cos η_r, sin η_r]`: the pairs [`rotations`] takes.
+    pub fn eta_pairs(&self) -> [f64; 4] {
+        let (si, ci) = self.eta_i.sin_cos();
+        let (sr, cr) = self.eta_r.sin_cos();
+        [ci, si, cr, sr]
+    }
+}

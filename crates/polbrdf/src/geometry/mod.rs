@@ -1,0 +1,11 @@
+//! Geometry (docs/model.md §1, §4): directions and one source/detector geometry
+//! ([`direction`]), the model's angle variables in closed form ([`angles`]), and many geometries
+//! at once ([`batch`]).
+
+pub mod angles;
+pub mod batch;
+pub mod direction;
+
+pub use angles::AngleVariables;
+pub use batch::GeometryBatch;
+pub use direction::{direction, Geometry};

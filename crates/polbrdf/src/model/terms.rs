@@ -1,0 +1,83 @@
+//! The scalar terms of the model that combine D, SO and the geometry: the two forms of the
+//! surface term (eqs. 1 and 6) and the volume term (eq. 1) — docs/model.md §5, §6.
+//!
+//! The pBRDF is `F = f_s·M/M00 + f_v·diag(1, 0, 0, 0)` with `M00 = R_F(β)`; since
+//! `f_s = R_F(β)·g` in both forms, `F = g·M + f_v·diag(1, 0, 0, 0)` and the model never divides
+//! by M00. This module computes `g` and `f_v`.
+
+use crate::geometry::angles::FacetAngles;
+use crate::numeric::math::Math;
+
+/// Which surface term (docs/model.md §5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Form {
+    /// Eq. 1 with eq. 2 read as `f_ZBS(θN) = R_F(0)·D(θN)/(4cos²θN)`:
+    /// `f_s = D·R_F(β)·SO / (4 cosθi cosθr)` (default).
+    #[default]
+    Standard,
+    /// Eq. 6 exactly as printed: `f_s = D·R_F(β)·cos²θN·SO / (4 cos²θi cos²θr)`.
+    Paper,
+}
+
+impl Form {
+    /// The name used in material files (`"standard"`, `"paper"`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Form::Standard => "standard",
+            Form::Paper => "paper",
+        }
+    }
+}
+
+impl std::str::FromStr for Form {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "standard" => Ok(Form::Standard),
+            "paper" => Ok(Form::Paper),
+            other => Err(format!("expected \"standard\" or \"paper\", got {other:?}")),
+        }
+    }
+}
+
+/// The volume term (eq. 1), unpolarized: `f_v = ρ_D + 2ρ_V/(cosθi + cosθr)`, given
+/// `inv_sz = 1/(cosθi + cosθr)`.
+#[inline(always)]
+pub fn volume<M: Math>(rho_d: f64, rho_v: f64, inv_sz: f64) -> f64 {
+    M::mla(2.0 * rho_v, inv_sz, rho_d)
+}
+
+/// `(g, f_v)` of one element, with one division: `g = f_s/R_F(β)`, i.e.
+/// `g = D·SO/(4 cosθi cosθr)` (`standard`) or `g = D·SO·cos²θN/(4 cos²θi cos²θr)` (`paper`,
+/// `cos²θN = s_z²/|s|²`), and the volume term [`volume`]. `so` is SO as
+/// `(numerator, denominator)` ([`crate::Shadowing::ratio`]; `(1, 1)` without shadowing).
+#[inline(always)]
+pub fn surface_and_volume<M: Math>(
+    form: Form,
+    d: f64,
+    (so_num, so_den): (f64, f64),
+    a: &FacetAngles,
+    rho_d: f64,
+    rho_v: f64,
+) -> (f64, f64) {
+    let (ci, cr, sz) = (a.cos_i, a.cos_r, a.sz);
+    let four_cc = 4.0 * ci * cr;
+    let (num, den) = match form {
+        Form::Standard => (d * so_num, so_den * four_cc),
+        Form::Paper => (d * so_num * (sz * sz), so_den * (four_cc * ci * cr) * a.s2),
+    };
+    // 1/(den·s_z) gives both g = num/den and 1/s_z = den/(den·s_z).
+    let r = 1.0 / (den * sz);
+    (num * sz * r, volume::<M>(rho_d, rho_v, den * r))
+}
+
+/// `g`, or 0 when the surface term `g·R_F` is below the smallest normal f64 (≈ 2.2·10⁻³⁰⁸ sr⁻¹):
+/// a subnormal keeps too few bits for its polarization to mean anything (docs/model.md §9.9).
+#[inline(always)]
+pub fn flush_subnormal(g: f64, r_f: f64) -> f64 {
+    if g * r_f >= f64::MIN_POSITIVE {
+        g
+    } else {
+        0.0
+    }
+}
