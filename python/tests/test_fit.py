@@ -89,3 +89,22 @@ def test_refusals_are_value_errors() -> None:
         polbrdf.fit(m, [10, np.inf, 30], 0, [10, 20, 30], 180, {"brdf": [1.0, 2.0, 3.0]}, ["n"])
     with pytest.raises(ValueError, match="cannot be determined"):
         polbrdf.fit(m, [40] * 8, 0, [40] * 8, 180, {"brdf": [3.0] * 8}, ["a", "sigma_deg"])
+
+
+def test_a_parameter_at_its_bound_has_an_upper_limit_not_a_standard_error() -> None:
+    # A dielectric (k = 0) without noise, k free: the best k is its bound 0.
+    truth = polbrdf.Material(n=1.5, sigma_deg=10.0, rho_d=0.02)
+    ti, pi, tr, pr = _geometry()
+    e = polbrdf.evaluate(truth, ti, pi, tr, pr)
+    start = polbrdf.Material(n=1.45, k=0.05, sigma_deg=12.0, rho_d=0.02)
+    r = polbrdf.fit(start, ti, pi, tr, pr, {"brdf": e.brdf, "dolp": e.dolp},
+                    ["n", "k", "sigma_deg"], sigma={"brdf": 0.02 * e.brdf, "dolp": 0.005})
+    assert r.names == ["n", "k", "sigma_deg"]
+    b = r.bounds
+    assert b[0] is None and b[2] is None
+    assert b[1] is not None and b[1]["bound"] == "lower"
+    assert r.values[1] == 0.0 and np.isnan(r.stderr[1])
+    assert 0.0 < b[1]["upper_limit_95"] < 0.5
+    c = b[1]["correlation_at_limit"]
+    assert c.shape == (3,) and c[1] == pytest.approx(1.0)
+    assert r.values[0] == pytest.approx(1.5, abs=1e-6)

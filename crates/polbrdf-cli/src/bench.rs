@@ -6,7 +6,7 @@
 
 use crate::error::CliError;
 use polbrdf::batch;
-use polbrdf::engine::Kernel;
+use polbrdf::engine::{Engine, IndexColumns, Kernel};
 use polbrdf::Geometry;
 use polbrdf::GeometryBatch;
 use serde_json::json;
@@ -112,6 +112,59 @@ fn run_with(
     })
 }
 
+/// The engine with a complex index per element, against the material's own index (all
+/// threads): the same N in every element (the overhead of the per-element path alone, identical
+/// results), and a sweep of 100 indices as a spectral sweep of a dielectric has them —
+/// `n` from 1.70 to 1.60 in 100 contiguous runs (wavelength-major, the batch's geometries split
+/// into 100 equal parts). Seconds per batch (medians).
+struct IndexRun {
+    constant_s: f64,
+    same_index_s: f64,
+    sweep_s: f64,
+    same_index_identical: bool,
+}
+
+fn run_index(repeats: usize, material: &polbrdf::Material, batch: &GeometryBatch<'_>) -> IndexRun {
+    let n = batch.len();
+    let (mut b0, mut d0) = (vec![0.0; n], vec![0.0; n]);
+    let (mut b1, mut d1) = (vec![0.0; n], vec![0.0; n]);
+    let (mut b2, mut d2) = (vec![0.0; n], vec![0.0; n]);
+    let index = material.index();
+    let same_n = vec![index.n(); n];
+    let same_k = vec![index.k(); n];
+    let sweep_n: Vec<f64> = (0..n)
+        .map(|i| 1.70 - 0.10 * (i * 100 / n) as f64 / 99.0)
+        .collect();
+    let zeros = vec![0.0; n];
+    let same = IndexColumns::new(&same_n, &same_k).expect("valid index");
+    let sweep = IndexColumns::new(&sweep_n, &zeros).expect("valid index");
+    let constant = Engine::new(material);
+    let per_element = Engine::new(material).with_index(same);
+    let swept = Engine::new(material).with_index(sweep);
+    let mut constant_s = Vec::new();
+    let mut same_index_s = Vec::new();
+    let mut sweep_s = Vec::new();
+    // Interleaved, so that a change of machine load affects the three alike.
+    for _ in 0..repeats {
+        for (engine, b, d, times) in [
+            (&constant, &mut b0, &mut d0, &mut constant_s),
+            (&per_element, &mut b1, &mut d1, &mut same_index_s),
+            (&swept, &mut b2, &mut d2, &mut sweep_s),
+        ] {
+            let t = Instant::now();
+            engine.brdf_dolp_into(batch, b, d).expect("lengths match");
+            black_box((b, d));
+            times.push(t.elapsed().as_secs_f64());
+        }
+    }
+    IndexRun {
+        constant_s: median(constant_s),
+        same_index_s: median(same_index_s),
+        sweep_s: median(sweep_s),
+        same_index_identical: b0 == b1 && d0 == d1,
+    }
+}
+
 /// Median latency (ns) of one call of `f` on the first geometries of the batch.
 fn latency_ns<T>(batch: &GeometryBatch<'_>, f: impl Fn(&Geometry) -> T) -> f64 {
     let geoms: Vec<Geometry> = (0..batch.len().min(1024)).map(|i| batch.get(i)).collect();
@@ -163,6 +216,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .iter()
         .map(|&t| run_with(t, args.repeats, &material, &batch))
         .collect::<Result<Vec<_>, _>>()?;
+    let index = run_index(args.repeats, &material, &batch);
     let kernel = Kernel::new(&material);
     let latency_kernel = latency_ns(&batch, |g| kernel.pbrdf(g));
     let latency_reference = latency_ns(&batch, |g| material.evaluate(g));
@@ -195,6 +249,15 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "statistic": "median",
             "cpu": {"model": cpu, "logical_cpus": all, "simd": simd},
             "results": results,
+            "per_element_index": {
+                "threads": threads,
+                "constant_index_brdf_dolp_evals_per_s": per_s(index.constant_s),
+                "same_index_per_element_evals_per_s": per_s(index.same_index_s),
+                "sweep_100_indices_evals_per_s": per_s(index.sweep_s),
+                "same_index_overhead": index.same_index_s / index.constant_s - 1.0,
+                "sweep_overhead": index.sweep_s / index.constant_s - 1.0,
+                "same_index_results_identical": index.same_index_identical,
+            },
             "single_eval_ns": {
                 "kernel": latency_kernel,
                 "reference": latency_reference,
@@ -232,8 +295,23 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         }
         println!();
         println!(
+            "BRDF + DoLP with a complex index per element ({threads} threads): \
+             {:.2} M/s with the material's own index; the same N in every element {:.2} M/s \
+             ({:+.1} %{}); 100 indices (a spectral sweep) {:.2} M/s ({:+.1} %)",
+            per_s(index.constant_s) / 1e6,
+            per_s(index.same_index_s) / 1e6,
+            100.0 * (index.same_index_s / index.constant_s - 1.0),
+            if index.same_index_identical {
+                ", identical results"
+            } else {
+                ", RESULTS DIFFER"
+            },
+            per_s(index.sweep_s) / 1e6,
+            100.0 * (index.sweep_s / index.constant_s - 1.0),
+        );
+        println!(
             "single evaluation: {latency_kernel:.1} ns (kernel, Kernel::pbrdf), \
-             {latency_reference:.1} ns (reference path, Material::evaluate)"
+             {latency_reference:.1} ns (one-geometry path, Material::evaluate)"
         );
         println!(
             "checksum: Σ brdf = {:.12e}, Σ dolp = {:.12e}, Σ F = {:.12e}{}",

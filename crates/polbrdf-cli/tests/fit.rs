@@ -128,3 +128,64 @@ fn refusals_are_clear_with_exit_code_3() {
         stderr(&out)
     );
 }
+
+#[test]
+fn a_parameter_pushed_to_its_bound_is_reported_with_an_upper_limit() {
+    // A dielectric (k = 0) measured without noise, k free: the best k is 0, its bound.
+    let dir = tempfile::tempdir().unwrap();
+    let mut truth = polbrdf::MaterialSpec::new(1.5, 10.0);
+    truth.rho_d = 0.02;
+    let m = truth.build().unwrap();
+    let mut csv = String::from(
+        "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf,sigma_brdf,dolp,sigma_dolp\n",
+    );
+    for ti in [10.0, 30.0, 50.0, 70.0] {
+        for k in 0..24 {
+            let (tr, pr) = (f64::from(k % 8) * 10.0 + 2.0, f64::from(k) * 15.0);
+            let g = polbrdf::Geometry::from_degrees(ti, 0.0, tr, pr).unwrap();
+            let e = m.evaluate(&g);
+            let (b, d) = (e.brdf(), e.dolp());
+            csv += &format!("{ti},0,{tr},{pr},{b:?},{:?},{d:?},0.005\n", 0.02 * b);
+        }
+    }
+    let data = write(dir.path(), "dielectric.csv", &csv);
+    let start = write(
+        dir.path(),
+        "start.toml",
+        "n = 1.45\nk = 0.05\nsigma_deg = 12\nrho_d = 0.02\n",
+    );
+    let json_path = dir.path().join("fit.json");
+    let out = polbrdf(&[
+        "fit",
+        "--material",
+        &start,
+        "--data",
+        &data,
+        "--free",
+        "n,k,sigma_deg",
+        "--output",
+        json_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("at its lower bound"),
+        "{}",
+        stderr(&out)
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    let k = &v["parameters"]["k"];
+    assert_eq!(k["bound"], "lower");
+    assert_eq!(k["value"].as_f64(), Some(0.0));
+    assert!(k["stderr"].is_null());
+    let limit = k["upper_limit_95"].as_f64().expect("an upper limit");
+    assert!(limit > 0.0 && limit < 0.5, "{limit}");
+    let corr = &k["correlation_at_limit"];
+    assert!((corr["k"].as_f64().unwrap() - 1.0).abs() < 1e-9);
+    assert!(corr["n"].as_f64().unwrap().abs() <= 1.0);
+    assert_eq!(v["parameters"]["n"]["bound"], "interior");
+    assert!((v["parameters"]["n"]["value"].as_f64().unwrap() - 1.5).abs() < 1e-6);
+    assert!(
+        v["covariance"][1][0].is_null(),
+        "k's covariance row is not defined"
+    );
+}

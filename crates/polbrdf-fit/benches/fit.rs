@@ -46,7 +46,7 @@ const FREE: [Param; 5] = [
     Param::RhoV,
 ];
 
-fn run(bencher: divan::Bencher, evaluator: Evaluator) {
+fn run(bencher: divan::Bencher<'_, '_>, evaluator: Evaluator) {
     let (start, data) = problem();
     let opts = FitOptions {
         evaluator,
@@ -61,12 +61,12 @@ fn run(bencher: divan::Bencher, evaluator: Evaluator) {
 
 /// The fit on the batch engine (the default).
 #[divan::bench(sample_count = 10)]
-fn five_parameters_10k_points_engine(bencher: divan::Bencher) {
+fn five_parameters_10k_points_engine(bencher: divan::Bencher<'_, '_>) {
     run(bencher, Evaluator::Engine);
 }
 
 /// The same fit, every residual evaluated one geometry at a time (`Material::evaluate_angles`).
 #[divan::bench(sample_count = 10)]
-fn five_parameters_10k_points_one_geometry(bencher: divan::Bencher) {
+fn five_parameters_10k_points_one_geometry(bencher: divan::Bencher<'_, '_>) {
     run(bencher, Evaluator::OneGeometry);
 }

@@ -566,7 +566,7 @@ pub fn fit(
         })?;
     let agreeing = reports
         .iter()
-        .filter(|r| r.1.chi2 <= best.chi2 * (1.0 + 1e-6) + 1e-300)
+        .filter(|r| r.1.chi2 - best.chi2 <= 1e-6 * best.chi2.max(1.0))
         .count();
 
     // A parameter left at its bound: its profile χ² gives the upper limit — or a better
@@ -588,6 +588,22 @@ pub fn fit(
         } else {
             1.0
         };
+        // A non-negative parameter the data cannot tell from its bound (χ² with it at the bound
+        // within 1e-6·unit — a thousandth of a standard error — of the best, or of χ²'s
+        // rounding) is at its bound: it approaches 0 only asymptotically where χ² is flat there
+        // (e.g. data the model fits exactly).
+        for j in 0..p {
+            let bound = free[j].lower_bound();
+            if bound.is_finite() && x[j] > bound {
+                let mut at = x.clone();
+                at[j] = bound;
+                let c = problem.chi2(&at);
+                if c <= best.chi2 + (1e-6 * unit).max(1e-9 * best.chi2) {
+                    x = at;
+                    best.chi2 = best.chi2.min(c);
+                }
+            }
+        }
         limits.clear();
         let mut better = None;
         for j in (0..p).filter(|&j| x[j] <= free[j].lower_bound()) {

@@ -1,4 +1,4 @@
-//! Zero-bistatic inversion (eq. 5, spec §6).
+//! Zero-bistatic inversion (eq. 5, docs/model.md §7).
 //!
 //! In backscatter (β = 0, SO = 1, θi = θr = θN = θ) both forms give
 //! `f(θ) = R_F(0)·D(θ)/(4cos²θ) + ρ_D + ρ_V/cosθ`, hence

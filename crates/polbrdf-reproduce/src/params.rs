@@ -2,9 +2,9 @@
 
 /// Refractive index of the paint (paper §3: "n = 1.65", from Maxwell & Beard).
 pub const N: f64 = 1.65;
-/// Ω of eq. 3 in degrees (paper §3: "Ω = 40"; the spec reads it as degrees).
+/// Ω of eq. 3 in degrees (paper §3: "Ω = 40"; docs/model.md §5 reads it as degrees).
 pub const OMEGA_DEG: f64 = 40.0;
-/// τ of eq. 3 in degrees (paper §3: "τ = 15"; the spec reads it as degrees).
+/// τ of eq. 3 in degrees (paper §3: "τ = 15"; docs/model.md §5 reads it as degrees).
 pub const TAU_DEG: f64 = 15.0;
 
 /// Width of D for Fig. 2 (ours: the paper gives no a, b). σ = 15° (b = 1/σ² = 14.59 rad⁻²),

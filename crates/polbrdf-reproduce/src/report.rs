@@ -315,7 +315,7 @@ radians inside the library, τ and Ω read as degrees.
 | quantity | value | source / reason |
 |---|---|---|
 | refractive index n | {N} (k = 0) | paper §3 ("n = 1.65", Maxwell & Beard) |
-| Ω, τ of SO (eq. 3) | {OMEGA_DEG}°, {TAU_DEG}° | paper §3 ("Ω = 40, τ = 15", no unit; degrees per the spec) |
+| Ω, τ of SO (eq. 3) | {OMEGA_DEG}°, {TAU_DEG}° | paper §3 ("Ω = 40, τ = 15", no unit; degrees per docs/model.md §5) |
 | azimuth factor of eq. 3 | none | the simplified in-plane model (eq. 6) has ΦN = 0 |
 | surface-term form | eq. 6 as printed (`paper` form) | reproduces the paper; the physically consistent `standard` form is shown as a variant |
 | D for Fig. 2 | σ = {FIG2_SIGMA_DEG}° (b = 1/σ² = {:.3} rad⁻²), a = {:.4} sr⁻¹ | **ours**: the paper gives no a, b. a from the hemispherical normalization ∫D cosθN dΩ = 1; σ = 15° is the project's `paint` preset. σ sets how fast each Fig. 2 curve falls with θN (D(θN)·cos²θN·SO), not the ordering of the curves |

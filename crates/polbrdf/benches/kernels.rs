@@ -66,7 +66,7 @@ fn level(name: &str) -> Option<SimdLevel> {
 
 /// Angle variables (θN, β, ΦN, η_i, η_r) in closed form.
 #[divan::bench]
-fn reference_geometry(bencher: Bencher) {
+fn reference_geometry(bencher: Bencher<'_, '_>) {
     let d = data();
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         for g in &d.geometries {
@@ -77,7 +77,7 @@ fn reference_geometry(bencher: Bencher) {
 
 /// Fresnel amplitudes, the Jones matrix of eq. 11 and its Mueller matrix, alone.
 #[divan::bench]
-fn reference_fresnel_mueller(bencher: Bencher) {
+fn reference_fresnel_mueller(bencher: Bencher<'_, '_>) {
     let d = data();
     let index = d.material.index();
     let vars: Vec<AngleVariables> = d
@@ -98,7 +98,7 @@ fn reference_fresnel_mueller(bencher: Bencher) {
 
 /// The full pBRDF through the reference path, `Material::evaluate`.
 #[divan::bench]
-fn reference_pbrdf(bencher: Bencher) {
+fn reference_pbrdf(bencher: Bencher<'_, '_>) {
     let d = data();
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         for g in &d.geometries {
@@ -109,7 +109,7 @@ fn reference_pbrdf(bencher: Bencher) {
 
 /// The full pBRDF (16 entries) through the kernel, one thread.
 #[divan::bench(args = LEVELS)]
-fn kernel_mueller(bencher: Bencher, name: &str) {
+fn kernel_mueller(bencher: Bencher<'_, '_>, name: &str) {
     let Some(level) = level(name) else { return };
     let d = data();
     let [ti, pi, tr, pr] = &d.cols;
@@ -124,7 +124,7 @@ fn kernel_mueller(bencher: Bencher, name: &str) {
 
 /// BRDF and DoLP only through the kernel, one thread.
 #[divan::bench(args = LEVELS)]
-fn kernel_brdf_dolp(bencher: Bencher, name: &str) {
+fn kernel_brdf_dolp(bencher: Bencher<'_, '_>, name: &str) {
     let Some(level) = level(name) else { return };
     let d = data();
     let [ti, pi, tr, pr] = &d.cols;
@@ -139,7 +139,7 @@ fn kernel_brdf_dolp(bencher: Bencher, name: &str) {
 
 /// BRDF, DoLP and AoLP through the kernel, one thread.
 #[divan::bench(args = LEVELS)]
-fn kernel_brdf_dolp_aolp(bencher: Bencher, name: &str) {
+fn kernel_brdf_dolp_aolp(bencher: Bencher<'_, '_>, name: &str) {
     let Some(level) = level(name) else { return };
     let d = data();
     let [ti, pi, tr, pr] = &d.cols;
@@ -154,7 +154,7 @@ fn kernel_brdf_dolp_aolp(bencher: Bencher, name: &str) {
 
 /// Latency of one evaluation through the kernel's single-geometry entry point.
 #[divan::bench]
-fn single_kernel_pbrdf(bencher: Bencher) {
+fn single_kernel_pbrdf(bencher: Bencher<'_, '_>) {
     let d = data();
     let k = Kernel::new(&d.material);
     let mut i = 0;
@@ -166,7 +166,7 @@ fn single_kernel_pbrdf(bencher: Bencher) {
 
 /// Latency of one evaluation through the reference path, `Material::evaluate`.
 #[divan::bench]
-fn single_reference_evaluate(bencher: Bencher) {
+fn single_reference_evaluate(bencher: Bencher<'_, '_>) {
     let d = data();
     let mut i = 0;
     bencher.bench_local(|| {

@@ -1,4 +1,4 @@
-//! Analytic limits of the model (spec §1–5, §7).
+//! Analytic limits of the model (docs/model.md §1–6, §13).
 //!
 //! Every expected value here is computed independently of the library, from textbook formulas
 //! (Snell's law form of the Fresnel coefficients, vector algebra for the beam and facet frames,
@@ -15,7 +15,7 @@ use polbrdf::{
 use reference::{Mat4, Model};
 use std::f64::consts::{FRAC_PI_2, PI};
 
-/// An independent implementation of the model, written from the spec's definitions with vector
+/// An independent implementation of the model, written from the definitions of docs/model.md with vector
 /// algebra (no closed forms shared with the library).
 pub(crate) mod reference {
     use num_complex::Complex64 as C;
@@ -48,7 +48,7 @@ pub(crate) mod reference {
         0.5 * (rs.norm_sqr() + rp.norm_sqr())
     }
 
-    /// Stokes vector of a Jones vector, spec §2 definition.
+    /// Stokes vector of a Jones vector, docs/model.md §2–3 definition.
     pub fn stokes(es: C, ep: C) -> [f64; 4] {
         let x = es * ep.conj();
         [
@@ -104,7 +104,7 @@ pub(crate) mod reference {
         inv
     }
 
-    /// `M = A (T ⊗ T*) A⁻¹` (spec §3), by brute force; asserts the result is real.
+    /// `M = A (T ⊗ T*) A⁻¹` (docs/model.md §4), by brute force; asserts the result is real.
     pub fn mueller(t: &Jones2) -> Mat4 {
         let (o, l, i) = (C::new(0.0, 0.0), C::new(1.0, 0.0), C::new(0.0, 1.0));
         let a = [[l, o, o, l], [l, o, o, -l], [o, l, l, o], [o, i, -i, o]];
@@ -173,7 +173,7 @@ pub(crate) mod reference {
         (s, cross(k, s))
     }
 
-    /// Angle variables from vectors (spec §1): θN, β, ΦN.
+    /// Angle variables from vectors (docs/model.md §1): θN, β, ΦN.
     pub struct Angles {
         pub theta_n: f64,
         pub beta: f64,
@@ -235,7 +235,7 @@ pub(crate) mod reference {
         t
     }
 
-    /// A material as the test writes it (angles in degrees, as in the spec's files).
+    /// A material as the test writes it (angles in degrees, as in material files).
     #[derive(Debug, Clone, Copy)]
     pub struct Model {
         pub n: f64,
@@ -310,7 +310,7 @@ pub(crate) mod reference {
             }
         }
 
-        /// (f_s, f_v, F) by the spec's §4–5 formulas, with `a` of the distribution given (it is
+        /// (f_s, f_v, F) by the formulas of docs/model.md §5–6, with `a` of the distribution given (it is
         /// checked against a brute-force normalization separately).
         pub fn pbrdf(&self, a_norm: f64, ti: f64, pi: f64, tr: f64, pr: f64) -> (f64, f64, Mat4) {
             if ti >= FRAC_PI_2 || tr >= FRAC_PI_2 {
@@ -431,7 +431,7 @@ fn normal_incidence_fresnel_reflectance_is_textbook() {
             "R_F(0) for N = {n}+{k}i: {} vs {want}",
             fr.reflectance()
         );
-        // rs(0) = (1 − N)/(1 + N), rp(0) = −rs(0) (spec §2).
+        // rs(0) = (1 − N)/(1 + N), rp(0) = −rs(0) (docs/model.md §2–3).
         let nn = C::new(n, k);
         let rs0 = (1.0 - nn) / (1.0 + nn);
         assert!((fr.rs - rs0).norm() < 1e-15, "rs(0) for N = {n}+{k}i");
@@ -502,7 +502,7 @@ fn mirror_at_beta_zero_is_diag_1_1_minus1_minus1() {
 fn beta_zero_matches_physical_normal_incidence_reflection() {
     // At θi = θr = 0 with arbitrary azimuths, and at backscatter, the reflected field is
     // (1 − N)/(1 + N) times the incident transverse field; T follows from projecting on the
-    // beam frames (spec §2), M from A (T ⊗ T*) A⁻¹.
+    // beam frames (docs/model.md §2–3), M from A (T ⊗ T*) A⁻¹.
     let model = Model::new(1.65, 0.4, 10.0);
     let m = model.material();
     let mut cases = vec![];
@@ -635,7 +635,7 @@ fn brewster_angle_gives_full_linear_polarization() {
 
 #[test]
 fn metals_never_fully_polarize_and_are_retarders() {
-    // For exp(−iωt), N = n + ik, the spec's rp convention: S = Im(rs rp*) is 0 at normal
+    // For exp(−iωt), N = n + ik, the rp convention of docs/model.md §3: S = Im(rs rp*) is 0 at normal
     // incidence (rp = −rs) and tends to 2cosθ·Im q > 0 toward grazing (q = sqrt(N² − sin²θ),
     // Im q > 0); the relative phase goes from π to 0 through π/2, so F23 = S·f/A > 0 and
     // F32 = −F23 for 0 < θ < 90°.
@@ -855,7 +855,7 @@ fn shadowing_is_one_at_specular_and_backscatter() {
 
 #[test]
 fn eq3_keeps_so_one_at_rotated_specular() {
-    // ΦN = 0 for every in-plane geometry and SO = 1 at specular (spec §1, §4), also when the
+    // ΦN = 0 for every in-plane geometry and SO = 1 at specular (docs/model.md §1, §4), also when the
     // azimuths are large and carry rounding errors: the specular geometry φr = φi + 180° given in
     // degrees anywhere in ±720° and then turned by up to ±720°. With eq3 a spurious ΦN ≈ 90°
     // from rounding would cut SO by up to a factor 1/(1 + (π/2)·θi/Ω).
@@ -1296,7 +1296,7 @@ fn from_jones_is_a_t_kron_t_conj_a_inverse() {
             assert!((mapped.0[i] - s_out[i]).abs() < 1e-13 * s2 * 4.0);
         }
     }
-    // Library's Stokes of a field agrees with the spec's definition; (1,1,0,0) is s.
+    // Library's Stokes of a field agrees with the definition of docs/model.md §2; (1,1,0,0) is s.
     let s = Stokes::from_field(C::new(1.0, 0.0), C::new(0.0, 0.0));
     assert_eq!(s, Stokes::s_polarized());
     let s = Stokes::from_field(C::new(0.0, 0.0), C::new(1.0, 0.0));

@@ -1,4 +1,4 @@
-//! Properties over the whole valid parameter space (spec §7), by proptest:
+//! Properties over the whole valid parameter space (docs/model.md §13), by proptest:
 //! n ∈ (0.05, 5], k ∈ [0, 10], σ ∈ [0.5°, 80°], ρ_D, ρ_V ∈ [0, 0.2], both forms, shadowing
 //! on/off, azimuth term none/eq3, θ ∈ [0°, 90°) (with 0, 89.999 and values just below 90°),
 //! φ ∈ [−720°, 720°], plus exact specular and backscatter geometries.
@@ -13,7 +13,7 @@ use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 // ---------------------------------------------------------------------------------------------
-// strategies (angles in degrees, as in the spec's files)
+// strategies (angles in degrees, as in material files)
 
 fn theta_deg() -> impl Strategy<Value = f64> {
     prop_oneof![
@@ -304,7 +304,7 @@ proptest! {
         phi in -720.0..=720.0f64,
         dir in (-1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64),
     ) {
-        // β → 0: the facet-frame choice s_l = s_in at β = 0 (spec §3) is the continuous limit.
+        // β → 0: the facet-frame choice s_l = s_in at β = 0 (docs/model.md §4) is the continuous limit.
         let m = model.material();
         let (t, p) = (theta.to_radians(), phi.to_radians());
         let at = m.evaluate(&Geometry::backscatter(t, p).unwrap());
@@ -343,7 +343,7 @@ proptest! {
         tiny in prop_oneof![Just(1e-9), 1e-12..1e-8f64],
         source_side in any::<bool>(),
     ) {
-        // θ → 0⁺ at fixed φ (spec §2): θ = 1e-9 and θ = 0 give the same F.
+        // θ → 0⁺ at fixed φ (docs/model.md §2–3): θ = 1e-9 and θ = 0 give the same F.
         let m = model.material();
         let (pi, tr, pr) = (phi_i.to_radians(), theta_r.to_radians(), phi_r.to_radians());
         let (g0, g1) = if source_side {
@@ -381,8 +381,8 @@ proptest! {
     fn reciprocity(model in model(), angles in angles_deg()) {
         // Scalar: f(i → r) = f(r → i) whenever SO is (azimuth term none); θN, β, the cosines
         // and the volume term are symmetric.
-        // Mueller: the spec's T = Rot(η_r)·diag(rs, rp)·Rot(−η_i); exchanging source and detector
-        // gives η_i' = −η_r, η_r' = −η_i (closed forms of spec §3 under θi ↔ θr, Δ → −Δ), and
+        // Mueller: docs/model.md's T = Rot(η_r)·diag(rs, rp)·Rot(−η_i); exchanging source and detector
+        // gives η_i' = −η_r, η_r' = −η_i (closed forms of docs/model.md §4 under θi ↔ θr, Δ → −Δ), and
         // the reciprocal beams' frames are (−s, p). Hence T' = D·Tᵀ·D with D = diag(1, −1), and
         // with M(Tᵀ) = Q·M(T)ᵀ·Q, Q = diag(1, 1, 1, −1) (from A (T ⊗ T*) A⁻¹) and
         // M(D) = diag(1, 1, −1, −1): F' = P·Fᵀ·P with P = diag(1, 1, −1, 1).

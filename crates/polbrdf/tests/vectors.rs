@@ -1,4 +1,4 @@
-//! Every case of the shared test vectors (spec §7), through the library.
+//! Every case of the shared test vectors (docs/model.md §13), through the library.
 
 use crate::common::{assert_matches, cases, f, matrix, spec_of};
 use polbrdf::Geometry;

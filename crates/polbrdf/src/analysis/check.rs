@@ -144,7 +144,7 @@ pub fn physical_validity(material: &Material, grid: &CheckGrid) -> ValidityRepor
         albedo,
         reciprocity_expected: material
             .shadowing()
-            .map_or(true, |s| s.azimuth_term() == AzimuthTerm::None),
+            .is_none_or(|s| s.azimuth_term() == AzimuthTerm::None),
         reciprocity,
     }
 }

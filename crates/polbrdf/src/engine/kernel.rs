@@ -647,7 +647,7 @@ impl Prepared {
             "a batch prepared at one SIMD level evaluated at another"
         );
         assert!(
-            start % BLOCK == 0 && start + len <= self.len,
+            start.is_multiple_of(BLOCK) && start + len <= self.len,
             "range {start}..{start}+{len} of a prepared batch of {} (start a multiple of {BLOCK})",
             self.len
         );
@@ -675,7 +675,7 @@ impl Blocks for PreparedRange<'_> {
         // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
         // partial last block was padded when prepared, as `load` pads.)
         assert!(
-            N == BLOCK && start % BLOCK == 0,
+            N == BLOCK && start.is_multiple_of(BLOCK),
             "prepared blocks of {BLOCK}"
         );
         let g = &self.p.blocks[self.first + start / BLOCK];
@@ -732,7 +732,7 @@ impl MuellerOut for [f64; 16] {
     #[inline(always)]
     fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) {
         #[cfg(target_arch = "x86_64")]
-        if stream && dst.as_ptr() as usize % 16 == 0 {
+        if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
             use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
             let n = dst.len().min(src.len());
             let (d, s) = (dst.as_mut_ptr().cast::<f64>(), src.as_ptr().cast::<f64>());

@@ -31,7 +31,7 @@ impl Form {
 
 impl std::str::FromStr for Form {
     type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Self, String> {
+    fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "standard" => Ok(Form::Standard),
             "paper" => Ok(Form::Paper),

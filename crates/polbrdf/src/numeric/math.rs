@@ -380,7 +380,7 @@ mod tests {
         }
         // Near the zeros: relative accuracy.
         for k in 1..2000 {
-            let x = k as f64 * std::f64::consts::FRAC_PI_2;
+            let x = k as f64 * FRAC_PI_2;
             for x in [x, x.next_up(), x.next_down(), 1e-300, 1e-20, -3e-9] {
                 let (s, c) = sincos::<FastFused>(x);
                 assert!(ulps(s, x.sin()) < 2.0, "sin({x}) = {s} vs {}", x.sin());

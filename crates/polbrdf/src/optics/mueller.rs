@@ -38,7 +38,7 @@ impl Mueller {
     }
 
     /// The ideal depolarizer `diag(1, 0, 0, 0)`: the polarization form of the unpolarized volume
-    /// term (eq. 9 as corrected, spec §5).
+    /// term (eq. 9 as corrected, docs/model.md §6).
     pub fn depolarizer() -> Self {
         Self::diagonal([1.0, 0.0, 0.0, 0.0])
     }
