@@ -51,7 +51,8 @@ fuzz_target!(|x: Input| {
         azimuth_term: if x.eq3 { AzimuthTerm::Eq3 } else { AzimuthTerm::None },
         rho_d: v(x.rho_d, 0.0, 1.0, false),
         rho_v: v(x.rho_v, 0.0, 1.0, false),
-    };
+        spectral: None,
+};
     let Ok(m) = spec.build() else { return };
     let [ti, pi, tr, pr] = x.angles_deg;
     let g = if x.raw {

@@ -58,6 +58,7 @@ __all__ = [
     "dolp",
     "evaluate",
     "fit",
+    "index",
     "mueller",
     "stokes_aolp",
     "stokes_dolp",
@@ -71,7 +72,7 @@ try:
 except PackageNotFoundError:  # pragma: no cover
     __version__ = "unknown"
 
-_NAMES = ("theta_i", "phi_i", "theta_r", "phi_r")
+_NAMES = ("theta_i", "phi_i", "theta_r", "phi_r", "wavelength_um")
 _F64 = NDArray[np.float64]
 _Flat = tuple[_F64, _F64, _F64, _F64]
 
@@ -97,10 +98,11 @@ class Evaluation(NamedTuple):
 
 def _flatten(
     material: Material,
-    angles: tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike],
-) -> tuple[tuple[int, ...], _Flat]:
-    """Broadcast the four angle arguments; return the shape and four flat C-contiguous float64
-    arrays (views when the input already is one, copies otherwise)."""
+    angles: tuple[ArrayLike, ...],
+) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
+    """Broadcast the four angle arguments (and the wavelength, when given: a fifth); return the
+    shape and the flat C-contiguous float64 arrays (views when the input already is one,
+    copies otherwise)."""
     if not isinstance(material, Material):
         raise TypeError(
             f"material must be a polbrdf.Material, not {type(material).__name__} "
@@ -116,10 +118,20 @@ def _flatten(
         b = np.broadcast_arrays(*arrays)
     except ValueError as e:
         shapes = ", ".join(f"{n}: {a.shape}" for n, a in zip(_NAMES, arrays))
-        raise ValueError(f"angle arrays do not broadcast together ({shapes})") from e
+        raise ValueError(f"arrays do not broadcast together ({shapes})") from e
     shape = b[0].shape
-    ti, pi, tr, pr = (np.ascontiguousarray(x, dtype=np.float64).reshape(-1) for x in b)
-    return shape, (ti, pi, tr, pr)
+    flat = tuple(np.ascontiguousarray(x, dtype=np.float64).reshape(-1) for x in b)
+    return shape, flat
+
+
+def _args(
+    angles: tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike], wavelength_um: ArrayLike | None
+) -> tuple[ArrayLike, ...]:
+    return angles if wavelength_um is None else (*angles, wavelength_um)
+
+
+def _wl(flat: tuple[_F64, ...]) -> _F64 | None:
+    return flat[4] if len(flat) == 5 else None
 
 
 def _located(e: ValueError, shape: tuple[int, ...]) -> ValueError:
@@ -139,6 +151,7 @@ def mueller(
     phi_r: ArrayLike,
     *,
     degrees: bool = True,
+    wavelength_um: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """The pBRDF F: the 4×4 Mueller-matrix BRDF (eq. 9 corrected), in sr⁻¹, psps basis.
 
@@ -152,6 +165,11 @@ def mueller(
         Zenith and azimuth of the direction toward the detector, same unit.
     degrees : bool
         Whether the angles are in degrees (default) or radians.
+    wavelength_um : array_like, optional
+        Vacuum wavelength in µm, broadcast with the angles: a material with a spectral index
+        (``Material(index=...)``) is evaluated with its index at each wavelength — one call
+        covers wavelengths × geometries. Required for such a material; a constant index does
+        not depend on it.
 
     Returns
     -------
@@ -167,12 +185,34 @@ def mueller(
     TypeError
         For a non-Material ``material`` or non-real angles.
     """
-    shape, flat = _flatten(material, (theta_i, phi_i, theta_r, phi_r))
+    shape, flat = _flatten(material, _args((theta_i, phi_i, theta_r, phi_r), wavelength_um))
     try:
-        out = _polbrdf.mueller_flat(material, *flat, degrees)
+        out = _polbrdf.mueller_flat(material, *flat[:4], degrees, _wl(flat))
     except ValueError as e:
         raise _located(e, shape) from None
     return out.reshape(shape + (4, 4))
+
+
+def index(material: Material, wavelength_um: ArrayLike) -> NDArray[np.complex128]:
+    """The complex refractive index ``n + ik`` of ``material`` at each vacuum wavelength (µm):
+    its spectral index there (linear interpolation of tabulated n and k, or its dispersion
+    formula), or its constant index. Same shape as ``wavelength_um``.
+
+    Raises
+    ------
+    ValueError
+        For a wavelength outside a spectral index's data (naming the material and its range) or
+        not finite and > 0.
+    """
+    if not isinstance(material, Material):
+        raise TypeError(f"material must be a polbrdf.Material, not {type(material).__name__}")
+    wl = np.asarray(wavelength_um)
+    if wl.dtype.kind not in "biuf":
+        raise TypeError(f"`wavelength_um` must hold real numbers, got dtype {wl.dtype}")
+    flat = np.ascontiguousarray(wl, dtype=np.float64).reshape(-1)
+    n, k = _polbrdf.index_flat(material, flat)
+    out = (n + 1j * k).reshape(wl.shape)
+    return out[()] if wl.shape == () else out
 
 
 def _scalar_or_array(a: NDArray[np.float64], shape: tuple[int, ...]) -> NDArray[np.float64]:
@@ -184,10 +224,11 @@ def _brdf_dolp(
     material: Material,
     angles: tuple[ArrayLike, ArrayLike, ArrayLike, ArrayLike],
     degrees: bool,
+    wavelength_um: ArrayLike | None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    shape, flat = _flatten(material, angles)
+    shape, flat = _flatten(material, _args(angles, wavelength_um))
     try:
-        f, d = _polbrdf.brdf_dolp_flat(material, *flat, degrees)
+        f, d = _polbrdf.brdf_dolp_flat(material, *flat[:4], degrees, _wl(flat))
     except ValueError as e:
         raise _located(e, shape) from None
     return _scalar_or_array(f, shape), _scalar_or_array(d, shape)
@@ -201,6 +242,7 @@ def brdf(
     phi_r: ArrayLike,
     *,
     degrees: bool = True,
+    wavelength_um: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """The scalar BRDF ``f = f_s + f_v = F00`` (eqs. 1/6), in sr⁻¹.
 
@@ -208,7 +250,7 @@ def brdf(
     (a NumPy scalar when every angle is a scalar). Zero where a direction is at or below the
     horizon.
     """
-    return _brdf_dolp(material, (theta_i, phi_i, theta_r, phi_r), degrees)[0]
+    return _brdf_dolp(material, (theta_i, phi_i, theta_r, phi_r), degrees, wavelength_um)[0]
 
 
 def dolp(
@@ -219,13 +261,14 @@ def dolp(
     phi_r: ArrayLike,
     *,
     degrees: bool = True,
+    wavelength_um: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """Degree of linear polarization of the reflected light for unpolarized illumination,
     ``sqrt(F10² + F20²)/F00`` (eq. 13), dimensionless in [0, 1]; 0 where ``F00 = 0``.
 
     Arguments, broadcasting and errors as :func:`mueller`; the result has the broadcast shape.
     """
-    return _brdf_dolp(material, (theta_i, phi_i, theta_r, phi_r), degrees)[1]
+    return _brdf_dolp(material, (theta_i, phi_i, theta_r, phi_r), degrees, wavelength_um)[1]
 
 
 def evaluate(
@@ -237,6 +280,7 @@ def evaluate(
     *,
     degrees: bool = True,
     with_mueller: bool = False,
+    wavelength_um: ArrayLike | None = None,
 ) -> Evaluation:
     """BRDF (sr⁻¹), DoLP and AoLP for unpolarized illumination — and the pBRDF with
     ``with_mueller=True`` — in one pass over the geometries.
@@ -246,9 +290,9 @@ def evaluate(
     toward its p axis; 0 without linear polarization. Arguments, broadcasting and errors as
     :func:`mueller`. Returns an :class:`Evaluation` named tuple.
     """
-    shape, flat = _flatten(material, (theta_i, phi_i, theta_r, phi_r))
+    shape, flat = _flatten(material, _args((theta_i, phi_i, theta_r, phi_r), wavelength_um))
     try:
-        f, d, a, m = _polbrdf.evaluate_flat(material, *flat, degrees, with_mueller)
+        f, d, a, m = _polbrdf.evaluate_flat(material, *flat[:4], degrees, with_mueller, _wl(flat))
     except ValueError as e:
         raise _located(e, shape) from None
     return Evaluation(
@@ -316,17 +360,22 @@ def fit(
     degrees: bool = True,
     starts: int = 2,
     seed: int = 1,
+    wavelength_um: ArrayLike | None = None,
 ) -> FitResult:
     """Fit material parameters to measurements (Levenberg–Marquardt), with uncertainties.
 
     ``material`` gives the start values and every parameter that stays fixed. ``data`` maps a
-    measured quantity — ``"brdf"`` (sr⁻¹), ``"dolp"``, or a pBRDF entry ``"m00"`` … ``"m33"``
-    (sr⁻¹, psps basis) — to its values; the angles and every data and ``sigma`` array broadcast
-    together. NaN means "not measured here". ``sigma`` maps a quantity to its 1-σ uncertainties
+    measured quantity — ``"brdf"`` (sr⁻¹), ``"dolp"``, ``"brdf_s"`` / ``"brdf_p"`` (s- or
+    p-polarized incidence without analyzer, ``F00 ± F01``), or a pBRDF entry ``"m00"`` …
+    ``"m33"`` (sr⁻¹, psps basis) — to its values; the angles, ``wavelength_um`` and every data
+    and ``sigma`` array broadcast together. NaN means "not measured here". ``sigma`` maps a quantity to its 1-σ uncertainties
     (> 0 where measured); a quantity without one weighs 1, and the uncertainties are then
     estimated from the scatter of the residuals (covariance × χ²/dof). ``free`` names the
     parameters to fit: any of ``n, k, a, b`` or ``sigma_deg``, ``rho_d, rho_v, tau_deg,
     omega_deg``. ``starts`` extra starts are scattered around the start values; the best χ² wins.
+    ``wavelength_um`` (µm) places each value at a wavelength: a material with a spectral index
+    is evaluated with its index there (n and k cannot then be free). To fit an effective index
+    per wavelength, call ``fit`` once per wavelength with a constant-index material.
 
     The same engine as ``polbrdf fit`` (docs/model.md §7a). Raises ``ValueError`` when the data
     cannot determine a parameter, when there are no more values than free parameters, or for
@@ -342,16 +391,17 @@ def fit(
     arrays = [np.asarray(data[k], dtype=np.float64) for k in names]
     sig_names = [k for k in names if k in sigma]
     sig_arrays = [np.asarray(sigma[k], dtype=np.float64) for k in sig_names]
-    shape, flat = _flatten(material, (theta_i, phi_i, theta_r, phi_r))
+    geometry = _args((theta_i, phi_i, theta_r, phi_r), wavelength_um)
+    shape, flat = _flatten(material, geometry)
     try:
         b = np.broadcast_arrays(np.empty(shape), *arrays, *sig_arrays)
     except ValueError as e:
         raise ValueError("angle, data and sigma arrays do not broadcast together") from e
     full = b[0].shape
     if full != shape:
-        flat = tuple(  # type: ignore[assignment]
+        flat = tuple(
             np.ascontiguousarray(np.broadcast_to(np.asarray(a), full), dtype=np.float64).reshape(-1)
-            for a in (theta_i, phi_i, theta_r, phi_r)
+            for a in geometry
         )
     vals = [np.ascontiguousarray(a, dtype=np.float64).reshape(-1) for a in b[1 : 1 + len(names)]]
     sigs_by_name = {
@@ -360,5 +410,14 @@ def fit(
     }
     sigs = [sigs_by_name.get(k) for k in names]
     return _polbrdf.fit_flat(
-        material, *flat, names, vals, sigs, list(free), degrees, int(starts), int(seed)
+        material,
+        *flat[:4],
+        names,
+        vals,
+        sigs,
+        list(free),
+        degrees,
+        int(starts),
+        int(seed),
+        _wl(flat),
     )

@@ -12,7 +12,8 @@ __all__ = ["Material", "brdf_dolp_flat", "evaluate_flat", "mueller_flat"]
 class Material:
     """A validated material of the simplified Maxwell–Beard model.
 
-    The keyword arguments are exactly the keys of a material file: ``n`` (> 0), ``k`` (≥ 0),
+    The keyword arguments are exactly the keys of a material file: ``n`` (> 0), ``k`` (≥ 0) — or
+    ``index`` ("library:<id>" or a refractiveindex.info YAML file) for a spectral index —,
     ``sigma_deg`` (roughness σ, degrees) or ``b`` (rad⁻²) — exactly one —, ``a`` (sr⁻¹; None =
     hemispherical normalization), ``form`` ("standard" | "paper"), ``shadowing``, ``tau_deg`` and
     ``omega_deg`` (degrees), ``azimuth_term`` ("none" | "eq3"), ``rho_d`` and ``rho_v`` (sr⁻¹),
@@ -21,8 +22,8 @@ class Material:
 
     def __new__(
         cls,
-        n: float,
-        k: float = 0.0,
+        n: float | None = None,
+        k: float | None = None,
         sigma_deg: float | None = None,
         b: float | None = None,
         a: float | None = None,
@@ -34,6 +35,7 @@ class Material:
         rho_d: float = 0.0,
         rho_v: float = 0.0,
         name: str | None = None,
+        index: str | None = None,
     ) -> Material: ...
     @staticmethod
     def from_toml(path: str | PathLike[str]) -> Material:
@@ -59,11 +61,20 @@ class Material:
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
     @property
-    def n(self) -> float:
-        """Real part of the refractive index."""
+    def n(self) -> float | None:
+        """Real part of the refractive index; None for a spectral index."""
     @property
-    def k(self) -> float:
-        """Extinction coefficient."""
+    def k(self) -> float | None:
+        """Extinction coefficient; None for a spectral index."""
+    @property
+    def index(self) -> str | None:
+        """Source of a spectral index ("library:<id>" or a YAML file's path), or None."""
+    @property
+    def wavelength_range(self) -> tuple[float, float] | None:
+        """(λ_min, λ_max) in µm of a spectral index's data, or None."""
+    @property
+    def index_references(self) -> str | None:
+        """References of a spectral index's source, or None."""
     @property
     def sigma_deg(self) -> float | None:
         """Roughness σ in degrees as given, or None."""
@@ -111,6 +122,7 @@ def mueller_flat(
     theta_r: NDArray[np.float64],
     phi_r: NDArray[np.float64],
     degrees: bool,
+    wavelength_um: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16)."""
 
@@ -121,8 +133,14 @@ def brdf_dolp_flat(
     theta_r: NDArray[np.float64],
     phi_r: NDArray[np.float64],
     degrees: bool,
+    wavelength_um: NDArray[np.float64] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """BRDF (sr⁻¹) and DoLP at n geometries, two arrays of length n."""
+
+def index_flat(
+    material: Material, wavelength_um: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """n and k of the material at each wavelength (µm)."""
 
 def evaluate_flat(
     material: Material,
@@ -132,6 +150,7 @@ def evaluate_flat(
     phi_r: NDArray[np.float64],
     degrees: bool,
     with_mueller: bool,
+    wavelength_um: NDArray[np.float64] | None = None,
 ) -> tuple[
     NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None
 ]:
@@ -206,5 +225,6 @@ def fit_flat(
     degrees: bool,
     starts: int,
     seed: int,
+    wavelength_um: NDArray[np.float64] | None = None,
 ) -> FitResult:
     """Fit at n geometries; values NaN where not measured."""

@@ -12,8 +12,8 @@
 //! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
-use polbrdf::batch;
 use polbrdf::model::KeyValue;
+use polbrdf::Engine;
 use polbrdf::GeometryBatch;
 use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
 use pyo3::exceptions::{
@@ -77,16 +77,19 @@ fn python_keys() -> impl Iterator<Item = &'static str> {
     polbrdf::model::KEYS
         .iter()
         .copied()
-        .filter(|k| *k != "name")
-        .chain(["name"])
+        .filter(|k| *k != "name" && *k != "index")
+        .chain(["name", "index"])
 }
 
 /// A validated material of the simplified Maxwell–Beard model.
 ///
 /// The keyword arguments are exactly the keys of a material file (see the README):
 ///
-/// - ``n``: real part of the refractive index (required, > 0).
+/// - ``n``: real part of the refractive index (> 0).
 /// - ``k``: extinction coefficient (≥ 0), default 0.
+/// - ``index``: instead of ``n``, ``k``, a spectral index: ``"library:<id>"`` (a library entry,
+///   e.g. ``"library:Au/Johnson"``; ``polbrdf materials`` lists them) or the path of a
+///   refractiveindex.info YAML file. Evaluations then need ``wavelength_um=``.
 /// - ``sigma_deg``: roughness σ in degrees (``b = 1/σ²``, σ in rad); or
 /// - ``b``: width of the facet distribution ``D = a·exp(−b·θN²)`` in rad⁻².
 ///   Give exactly one of ``sigma_deg`` and ``b``.
@@ -116,10 +119,15 @@ fn parse_azimuth(s: &str) -> PyResult<AzimuthTerm> {
         .map_err(|m| PyValueError::new_err(format!("invalid `azimuth_term`: {m}")))
 }
 
+/// Validates a spec into a material; a spectral one is built at the first wavelength of its
+/// data (every evaluation then takes its wavelengths from the call).
 fn build(py: Python<'_>, spec: &MaterialSpec) -> PyResult<PyMaterial> {
-    spec.build()
-        .map(|inner| PyMaterial { inner })
-        .map_err(|e| core_err(py, &e))
+    match spec.wavelength_range() {
+        Some((lo, _)) => spec.build_at(lo),
+        None => spec.build(),
+    }
+    .map(|inner| PyMaterial { inner })
+    .map_err(|e| core_err(py, &e))
 }
 
 /// 1-based line of byte offset `pos` in `bytes`.
@@ -151,15 +159,15 @@ fn py_float(x: f64) -> String {
 impl PyMaterial {
     #[new]
     #[pyo3(signature = (
-        n, k = 0.0, sigma_deg = None, b = None, a = None, form = "standard", shadowing = true,
-        tau_deg = 15.0, omega_deg = 40.0, azimuth_term = "none", rho_d = 0.0, rho_v = 0.0,
-        name = None
+        n = None, k = None, sigma_deg = None, b = None, a = None, form = "standard",
+        shadowing = true, tau_deg = 15.0, omega_deg = 40.0, azimuth_term = "none", rho_d = 0.0,
+        rho_v = 0.0, name = None, index = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        n: f64,
-        k: f64,
+        n: Option<f64>,
+        k: Option<f64>,
         sigma_deg: Option<f64>,
         b: Option<f64>,
         a: Option<f64>,
@@ -171,11 +179,39 @@ impl PyMaterial {
         rho_d: f64,
         rho_v: f64,
         name: Option<String>,
+        index: Option<String>,
     ) -> PyResult<Self> {
+        let spectral = match (&index, n, k) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
+                return Err(PyValueError::new_err(
+                    "give either `index` (a spectral index) or the constant `n`, `k`, not both",
+                ))
+            }
+            (None, None, _) => {
+                return Err(PyValueError::new_err(
+                    "give `n` (and `k`): a constant index, or `index` (\"library:<id>\" or the \
+                     path of a refractiveindex.info YAML file): a spectral one",
+                ))
+            }
+            (Some(source), None, None) => {
+                let index = polbrdf_io::library::resolve(source, None).map_err(|e| io_err(&e))?;
+                let source = if source.starts_with(polbrdf_io::library::PREFIX) {
+                    source.clone()
+                } else {
+                    std::fs::canonicalize(source)
+                        .map_or_else(|_| source.clone(), |p| p.to_string_lossy().into_owned())
+                };
+                Some(polbrdf::model::SpectralSource {
+                    source,
+                    index: std::sync::Arc::new(index),
+                })
+            }
+            (None, Some(_), _) => None,
+        };
         let spec = MaterialSpec {
             name,
-            n,
-            k,
+            n: n.unwrap_or(f64::NAN),
+            k: k.unwrap_or(0.0),
             sigma_deg,
             b,
             a,
@@ -186,6 +222,7 @@ impl PyMaterial {
             azimuth_term: parse_azimuth(azimuth_term)?,
             rho_d,
             rho_v,
+            spectral,
         };
         build(py, &spec)
     }
@@ -255,6 +292,15 @@ impl PyMaterial {
         let s = self.inner.spec();
         let d = PyDict::new(py);
         for key in python_keys() {
+            // Exactly the keys that describe the material: `index` or the constant `n`, `k`.
+            let omitted = match key {
+                "index" => !s.is_spectral(),
+                "n" | "k" => s.is_spectral(),
+                _ => false,
+            };
+            if omitted {
+                continue;
+            }
             match s.get(key) {
                 Some(KeyValue::Number(x)) => d.set_item(key, x)?,
                 Some(KeyValue::Text(t)) => d.set_item(key, t)?,
@@ -279,7 +325,7 @@ impl PyMaterial {
         for key in python_keys() {
             match s.get(key) {
                 Some(KeyValue::Number(x)) => parts.push(format!("{key}={}", py_float(x))),
-                Some(KeyValue::Text(t)) if key == "name" => {
+                Some(KeyValue::Text(t)) if key == "name" || key == "index" => {
                     let r = pyo3::types::PyString::new(py, &t).repr()?;
                     parts.push(format!("{key}={r}"));
                 }
@@ -293,15 +339,43 @@ impl PyMaterial {
         Ok(format!("Material({})", parts.join(", ")))
     }
 
-    /// Real part of the refractive index.
+    /// Real part of the refractive index; ``None`` for a spectral index (see
+    /// :func:`polbrdf.index`).
     #[getter]
-    fn n(&self) -> f64 {
-        self.inner.spec().n
+    fn n(&self) -> Option<f64> {
+        let s = self.inner.spec();
+        (!s.is_spectral()).then_some(s.n)
     }
-    /// Extinction coefficient (imaginary part of the refractive index).
+    /// Extinction coefficient (imaginary part of the refractive index); ``None`` for a
+    /// spectral index.
     #[getter]
-    fn k(&self) -> f64 {
-        self.inner.spec().k
+    fn k(&self) -> Option<f64> {
+        let s = self.inner.spec();
+        (!s.is_spectral()).then_some(s.k)
+    }
+    /// Where a spectral index comes from (``"library:<id>"`` or the YAML file's absolute
+    /// path), or ``None`` for a constant index.
+    #[getter]
+    fn index(&self) -> Option<String> {
+        self.inner
+            .spec()
+            .spectral
+            .as_ref()
+            .map(|s| s.source.clone())
+    }
+    /// ``(λ_min, λ_max)`` in µm where a spectral index has data, or ``None``.
+    #[getter]
+    fn wavelength_range(&self) -> Option<(f64, f64)> {
+        self.inner.spec().wavelength_range()
+    }
+    /// The references of a spectral index's source (as the file gives them), or ``None``.
+    #[getter]
+    fn index_references(&self) -> Option<String> {
+        self.inner
+            .spec()
+            .spectral
+            .as_ref()
+            .map(|s| s.index.references.clone())
     }
     /// Roughness σ in degrees as given, or ``None`` when ``b`` was given.
     #[getter]
@@ -388,6 +462,68 @@ fn slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> PyResult<[&'a [f64]
         })?;
     }
     Ok(out)
+}
+
+/// Runs `f` with the engine for elements `start .. start + len`: the material's own index, or
+/// with `wavelengths` (µm, one per element) the material's index at each (a spectral index;
+/// a constant one does not depend on it). A spectral material needs the wavelengths.
+fn with_engine<T>(
+    m: &Material,
+    wavelengths: Option<&[f64]>,
+    start: usize,
+    len: usize,
+    f: impl FnOnce(&Engine<'_>) -> Result<T, polbrdf::Error>,
+) -> Result<T, polbrdf::Error> {
+    let spec = m.spec();
+    match wavelengths {
+        None if spec.is_spectral() => {
+            let (lo, hi) = spec.wavelength_range().unwrap_or((f64::NAN, f64::NAN));
+            Err(polbrdf::Error::InconsistentParameters(format!(
+                "the material has a spectral index ({lo}–{hi} µm): give wavelength_um="
+            )))
+        }
+        None => f(&Engine::new(m)),
+        Some(wl) => {
+            // A wavelength outside the data: its position in the whole array.
+            let engine = Engine::new(m)
+                .with_wavelengths(&wl[start..start + len])
+                .map_err(|e| match e {
+                    polbrdf::Error::WavelengthOutOfRange {
+                        material,
+                        wavelength_um,
+                        range,
+                        position,
+                    } => polbrdf::Error::WavelengthOutOfRange {
+                        material,
+                        wavelength_um,
+                        range,
+                        position: position.map(|p| p + start),
+                    },
+                    other => other,
+                })?;
+            f(&engine)
+        }
+    }
+}
+
+/// The wavelength array as a slice of the angles' length.
+fn wavelength_slice<'a>(
+    wl: &'a Option<PyReadonlyArray1<'_, f64>>,
+    n: usize,
+) -> PyResult<Option<&'a [f64]>> {
+    let Some(a) = wl else { return Ok(None) };
+    let s = a.as_slice().map_err(|e| {
+        PyValueError::new_err(format!(
+            "`wavelength_um` must be a contiguous 1-D array: {e}"
+        ))
+    })?;
+    if s.len() != n {
+        return Err(PyValueError::new_err(format!(
+            "`wavelength_um` has {} elements, the angles {n}",
+            s.len()
+        )));
+    }
+    Ok(Some(s))
 }
 
 /// Checks that the four angle arrays are equally long; returns the length.
@@ -483,7 +619,8 @@ fn python_name(core: &'static str) -> &'static str {
 /// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` float64 array, row-major
 /// 4×4 per geometry. The Python layer reshapes it to `shape + (4, 4)`.
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees))]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None))]
+#[allow(clippy::too_many_arguments)]
 fn mueller_flat<'py>(
     py: Python<'py>,
     material: &PyMaterial,
@@ -492,9 +629,11 @@ fn mueller_flat<'py>(
     theta_r: PyReadonlyArray1<'py, f64>,
     phi_r: PyReadonlyArray1<'py, f64>,
     degrees: bool,
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let wl = wavelength_slice(&wavelength_um, n)?;
     let out = PyArray2::<f64>::zeros(py, [n, 16], false);
     {
         let mut rw = out.readwrite();
@@ -506,7 +645,7 @@ fn mueller_flat<'py>(
                 .enumerate()
                 .try_for_each(|(c, rows)| {
                     chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
-                        batch::mueller_into(m, b, rows)
+                        with_engine(m, wl, c * CHUNK, rows.len(), |e| e.mueller_into(b, rows))
                     })
                 })
         })
@@ -518,8 +657,8 @@ fn mueller_flat<'py>(
 /// The scalar BRDF `f` (sr⁻¹) and the DoLP for unpolarized input at `n` geometries, as two
 /// float64 arrays of length `n`.
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees))]
-#[allow(clippy::type_complexity)]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None))]
+#[allow(clippy::type_complexity, clippy::too_many_arguments)]
 fn brdf_dolp_flat<'py>(
     py: Python<'py>,
     material: &PyMaterial,
@@ -528,9 +667,11 @@ fn brdf_dolp_flat<'py>(
     theta_r: PyReadonlyArray1<'py, f64>,
     phi_r: PyReadonlyArray1<'py, f64>,
     degrees: bool,
-) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<ArrayPair<'py>> {
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let wl = wavelength_slice(&wavelength_um, n)?;
     let brdf = PyArray1::<f64>::zeros(py, n, false);
     let dolp = PyArray1::<f64>::zeros(py, n, false);
     {
@@ -544,7 +685,7 @@ fn brdf_dolp_flat<'py>(
                 .enumerate()
                 .try_for_each(|(c, (b, d))| {
                     chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                        batch::brdf_dolp_into(m, g, b, d)
+                        with_engine(m, wl, c * CHUNK, b.len(), |e| e.brdf_dolp_into(g, b, d))
                     })
                 })
         })
@@ -563,7 +704,7 @@ type Evaluated<'py> = (
 /// BRDF (sr⁻¹), DoLP and AoLP (of `F·(1,0,0,0)`; degrees when `degrees`, else radians) at `n`
 /// geometries, plus the `(n, 16)` pBRDF when `with_mueller`; one pass over the geometries.
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, with_mueller))]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, with_mueller, wavelength_um=None))]
 #[allow(clippy::too_many_arguments)]
 fn evaluate_flat<'py>(
     py: Python<'py>,
@@ -574,9 +715,11 @@ fn evaluate_flat<'py>(
     phi_r: PyReadonlyArray1<'py, f64>,
     degrees: bool,
     with_mueller: bool,
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Evaluated<'py>> {
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let wl = wavelength_slice(&wavelength_um, n)?;
     let brdf = PyArray1::<f64>::zeros(py, n, false);
     let dolp = PyArray1::<f64>::zeros(py, n, false);
     let aolp = PyArray1::<f64>::zeros(py, n, false);
@@ -593,13 +736,14 @@ fn evaluate_flat<'py>(
         let m = &material.inner;
         // BRDF, DoLP and AoLP (the core's `Stokes::dolp`/`Stokes::aolp` of F·(1, 0, 0, 0)) from
         // the kernel's BRDF+DoLP+AoLP path, so that they are bitwise those of `brdf`/`dolp`.
-        let scalars = |g: &GeometryBatch<'_>, b: &mut [f64], d: &mut [f64], a: &mut [f64]| {
-            batch::brdf_dolp_aolp_into(m, g, b, d, a)?;
-            if degrees {
-                a.iter_mut().for_each(|x| *x = x.to_degrees());
-            }
-            Ok(())
-        };
+        let scalars =
+            |start: usize, g: &GeometryBatch<'_>, b: &mut [f64], d: &mut [f64], a: &mut [f64]| {
+                with_engine(m, wl, start, b.len(), |e| e.brdf_dolp_aolp_into(g, b, d, a))?;
+                if degrees {
+                    a.iter_mut().for_each(|x| *x = x.to_degrees());
+                }
+                Ok(())
+            };
         py.detach(|| {
             let chunks = b
                 .par_chunks_mut(CHUNK)
@@ -612,20 +756,47 @@ fn evaluate_flat<'py>(
                     chunks.zip(rows.par_chunks_mut(CHUNK)).try_for_each(
                         |((c, ((b, d), a)), rows)| {
                             chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                                batch::mueller_into(m, g, rows)?;
-                                scalars(g, b, d, a)
+                                with_engine(m, wl, c * CHUNK, b.len(), |e| {
+                                    e.mueller_into(g, rows)
+                                })?;
+                                scalars(c * CHUNK, g, b, d, a)
                             })
                         },
                     )
                 }
                 None => chunks.try_for_each(|(c, ((b, d), a))| {
-                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| scalars(g, b, d, a))
+                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
+                        scalars(c * CHUNK, g, b, d, a)
+                    })
                 }),
             }
         })
         .map_err(|e| core_err(py, &e))?;
     }
     Ok((brdf, dolp, aolp, mueller))
+}
+
+/// Two float64 arrays.
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// The complex index `n + ik` of a material at each wavelength (µm), as two float64 arrays:
+/// the spectral index there, or the constant one.
+#[pyfunction]
+#[pyo3(signature = (material, wavelength_um))]
+fn index_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    wavelength_um: PyReadonlyArray1<'py, f64>,
+) -> PyResult<ArrayPair<'py>> {
+    let wl = wavelength_um.as_slice().map_err(|e| {
+        PyValueError::new_err(format!(
+            "`wavelength_um` must be a contiguous 1-D array: {e}"
+        ))
+    })?;
+    let (n, k) = material.inner.spec().index_columns(wl).map_err(|(i, e)| {
+        PyValueError::new_err(format!("wavelength_um = {} (at index {i}): {e}", wl[i]))
+    })?;
+    Ok((PyArray1::from_vec(py, n), PyArray1::from_vec(py, k)))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -794,9 +965,10 @@ impl PyFitResult {
 
 /// Fits the `free` parameters of `material` to measured quantities at `n` geometries.
 /// `names[k]` is `brdf`, `dolp` or `m00` … `m33`; `values[k]` has length `n` with NaN where not
-/// measured; `sigmas[k]` (1-σ, > 0 where measured) or `None` for equal weights.
+/// measured; `sigmas[k]` (1-σ, > 0 where measured) or `None` for equal weights; `wavelength_um`
+/// (µm, length `n`) places each geometry at a wavelength (a spectral index is fixed there).
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, names, values, sigmas, free, degrees, starts, seed))]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, names, values, sigmas, free, degrees, starts, seed, wavelength_um=None))]
 #[allow(clippy::too_many_arguments)]
 fn fit_flat<'py>(
     py: Python<'py>,
@@ -812,10 +984,23 @@ fn fit_flat<'py>(
     degrees: bool,
     starts: usize,
     seed: u64,
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<PyFitResult> {
     use polbrdf_fit::{Measurement, Observable, Param};
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let wl = wavelength_slice(&wavelength_um, n)?;
+    if let Some(wl) = wl {
+        if let Some((i, l)) = wl
+            .iter()
+            .enumerate()
+            .find(|(_, l)| !(l.is_finite() && **l > 0.0))
+        {
+            return Err(PyValueError::new_err(format!(
+                "wavelength_um = {l} at index {i}: a wavelength must be finite and > 0 µm"
+            )));
+        }
+    }
     let fit_err = |e: polbrdf_fit::FitError| PyValueError::new_err(e.to_string());
     let free: Vec<Param> = Param::parse_list(&free.join(",")).map_err(fit_err)?;
     let mut geometries = Vec::with_capacity(n);
@@ -848,7 +1033,7 @@ fn fit_flat<'py>(
     for ((name, v), s) in names.iter().zip(&values).zip(&sigmas) {
         let observable = Observable::parse(name).ok_or_else(|| {
             PyValueError::new_err(format!(
-                "unknown measured quantity `{name}` (expected brdf, dolp or m00 … m33)"
+                "unknown measured quantity `{name}` (expected brdf, dolp, brdf_s, brdf_p or m00 … m33)"
             ))
         })?;
         let v = v
@@ -890,6 +1075,7 @@ fn fit_flat<'py>(
                 observable,
                 value: v[i],
                 sigma,
+                wavelength_um: wl.map(|w| w[i]),
             });
         }
     }
@@ -902,7 +1088,11 @@ fn fit_flat<'py>(
     let result = py
         .detach(|| polbrdf_fit::fit(&spec, &free, &data, &opts))
         .map_err(fit_err)?;
-    let material = result.spec.build().map_err(|e| core_err(py, &e))?;
+    let material = match (result.spec.is_spectral(), wl) {
+        (true, Some(w)) => result.spec.build_at(w[0]),
+        _ => result.spec.build(),
+    }
+    .map_err(|e| core_err(py, &e))?;
     Ok(PyFitResult { result, material })
 }
 
@@ -913,6 +1103,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(mueller_flat, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(index_flat, m)?)?;
     m.add_class::<PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit_flat, m)?)?;
     Ok(())

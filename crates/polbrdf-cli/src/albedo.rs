@@ -2,7 +2,7 @@
 //! incidence angles, with every value above 1 (a parameter set that creates energy) flagged.
 
 use crate::error::CliError;
-use crate::map::load;
+use crate::spectrum::{describe, load_spec, materials_at, SpectralArgs};
 use polbrdf::{directional_hemispherical, Albedo};
 use polbrdf_io::csv_io::fmt_f64;
 use polbrdf_io::CsvTable;
@@ -26,6 +26,8 @@ pub struct Args {
     /// Also write the table as CSV (theta_i_deg, albedo, surface, volume, exceeds_one).
     #[arg(long, value_name = "albedo.csv")]
     pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub spectral: SpectralArgs,
 }
 
 /// Runs `polbrdf albedo`.
@@ -40,11 +42,27 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "--theta-i-deg = {bad}: the incidence angle must lie in [0, 90)"
         )));
     }
-    let (material, name) = load(&args.material, "--material")?;
-    // Each albedo runs its quadrature nodes through the engine, in parallel.
+    let spectrum = args.spectral.spectrum()?;
+    let (spec, name) = load_spec(&args.material, "--material")?;
+    let nodes = materials_at(&[(&spec, "--material", &args.material)], &spectrum)?;
+    let name = format!("{name}{}", describe(&spectrum));
+    // Each albedo runs its quadrature nodes through the engine, in parallel; over a band, the
+    // response-weighted mean of the albedos at the band's nodes.
     let rows: Vec<Albedo> = angles
         .iter()
-        .map(|t| directional_hemispherical(&material, t.to_radians()))
+        .map(|t| {
+            let mut a = Albedo {
+                theta_i: t.to_radians(),
+                surface: 0.0,
+                volume: 0.0,
+            };
+            for (w, ms) in &nodes {
+                let x = directional_hemispherical(&ms[0], t.to_radians());
+                a.surface += w * x.surface;
+                a.volume += w * x.volume;
+            }
+            a
+        })
         .collect();
 
     if let Some(path) = &args.output {

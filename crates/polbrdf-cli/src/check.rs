@@ -1,12 +1,15 @@
 //! `polbrdf check`: is a parameter set physically valid everywhere?
 
 use crate::error::CliError;
-use polbrdf::{physical_validity, CheckGrid};
+use crate::spectrum::{describe, materials_at, SpectralArgs};
+use polbrdf::{physical_validity, CheckGrid, ValidityReport};
 
-/// Runs `polbrdf check`; exit code 6 when a check fails.
-pub fn run(material: &str, grid_deg: f64) -> Result<(), CliError> {
+/// Runs `polbrdf check`; exit code 6 when a check fails. Over a band, every check runs at each
+/// of the band's spectral nodes and the worst one is reported.
+pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(), CliError> {
     let spec = polbrdf_io::load_material(material)?;
-    let m = spec.build()?;
+    let spectrum = spectral.spectrum()?;
+    let nodes = materials_at(&[(&spec, "--material", material)], &spectrum)?;
     if !(grid_deg.is_finite() && grid_deg > 0.0 && grid_deg <= 30.0) {
         return Err(CliError::Invalid(format!(
             "--grid-deg = {grid_deg}: must lie in (0, 30]"
@@ -16,7 +19,23 @@ pub fn run(material: &str, grid_deg: f64) -> Result<(), CliError> {
         zenith_step: grid_deg.to_radians(),
         azimuth_step: (2.0 * grid_deg).to_radians(),
     };
-    let r = physical_validity(&m, &grid);
+    // Per node: (wavelength, report).
+    let reports: Vec<(Option<f64>, ValidityReport)> = nodes
+        .iter()
+        .map(|(_, ms)| (ms[0].wavelength_um(), physical_validity(&ms[0], &grid)))
+        .collect();
+    let at = |l: Option<f64>| l.map(|l| format!(" at λ = {l:.4} µm")).unwrap_or_default();
+    let worst = |key: &dyn Fn(&ValidityReport) -> f64| {
+        reports
+            .iter()
+            .max_by(|a, b| key(&a.1).total_cmp(&key(&b.1)))
+            .expect("at least one node")
+    };
+    let (l_real, r_real) = worst(&|r| -r.min_coherency.0);
+    let (l_energy, r_energy) = worst(&|r| r.max_albedo().total());
+    let (l_recip, r_recip) = worst(&|r| r.reciprocity.0.max(r.reciprocity.1));
+    let m = &nodes[0].1[0];
+    let r = r_real;
     let mark = |ok: bool| if ok { "ok  " } else { "FAIL" };
     let deg = |g: &polbrdf::Geometry| {
         format!(
@@ -27,23 +46,35 @@ pub fn run(material: &str, grid_deg: f64) -> Result<(), CliError> {
         )
     };
     println!(
-        "polbrdf check: {} over {} geometries (zenith step {grid_deg}°, azimuth step {}°)\n",
+        "polbrdf check: {}{} over {} geometries (zenith step {grid_deg}°, azimuth step {}°){}\n",
         m.name().unwrap_or(material),
+        describe(&spectrum),
         r.geometries,
-        2.0 * grid_deg
+        2.0 * grid_deg,
+        if reports.len() > 1 {
+            format!(
+                ", at {} wavelengths of the band (the worst shown)",
+                reports.len()
+            )
+        } else {
+            String::new()
+        }
     );
     println!(
-        "  {} realizable: smallest coherency eigenvalue / F00 = {:.3e} (at {})",
+        "  {} realizable: smallest coherency eigenvalue / F00 = {:.3e} (at {}{})",
         mark(r.realizable()),
         r.min_coherency.0,
-        deg(&r.min_coherency.1)
+        deg(&r.min_coherency.1),
+        at(*l_real)
     );
+    let r = r_energy;
     let top = r.max_albedo();
     println!(
-        "  {} energy: largest directional–hemispherical reflectance {:.6} at θi = {:.0}°",
+        "  {} energy: largest directional–hemispherical reflectance {:.6} at θi = {:.0}°{}",
         mark(r.conserves_energy()),
         top.total(),
-        top.theta_i.to_degrees()
+        top.theta_i.to_degrees(),
+        at(*l_energy)
     );
     for a in r
         .albedo
@@ -58,13 +89,15 @@ pub fn run(material: &str, grid_deg: f64) -> Result<(), CliError> {
             a.volume
         );
     }
+    let r = r_recip;
     if r.reciprocity_expected {
         println!(
-            "  {} reciprocity: largest deviation {:.3e} (scalar) / {:.3e} (F vs P·Fᵀ·P) at {}",
+            "  {} reciprocity: largest deviation {:.3e} (scalar) / {:.3e} (F vs P·Fᵀ·P) at {}{}",
             mark(r.reciprocal()),
             r.reciprocity.0,
             r.reciprocity.1,
-            deg(&r.reciprocity.2)
+            deg(&r.reciprocity.2),
+            at(*l_recip)
         );
     } else {
         println!(
@@ -72,7 +105,7 @@ pub fn run(material: &str, grid_deg: f64) -> Result<(), CliError> {
             r.reciprocity.0.max(r.reciprocity.1)
         );
     }
-    if r.passes() {
+    if reports.iter().all(|(_, r)| r.passes()) {
         Ok(())
     } else {
         Err(CliError::CheckFailed)

@@ -4,9 +4,10 @@
 
 use crate::error::CliError;
 use crate::map::{
-    angle_scale, csv, deg, dolp_scale, light_marks, load, polar_grid, render_all, short, single,
+    angle_scale, csv, deg, dolp_scale, light_marks, polar_grid, render_all, short, single,
     write_all, Output, ViewArgs, PANEL,
 };
+use crate::spectrum::{describe, load_spec, materials_at};
 use polbrdf::analysis::contrast::{
     Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
@@ -96,11 +97,29 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     // Everything is validated before anything is computed or written.
     let (light, grid) = args.view.build()?;
     let opts = args.rank_options()?;
-    let (target, t_name) = load(&args.target, "--target")?;
-    let (background, b_name) = load(&args.background, "--background")?;
+    let spectrum = args.view.spectral.spectrum()?;
+    let (target, t_name) = load_spec(&args.target, "--target")?;
+    let (background, b_name) = load_spec(&args.background, "--background")?;
+    let nodes = materials_at(
+        &[
+            (&target, "--target", &args.target),
+            (&background, "--background", &args.background),
+        ],
+        &spectrum,
+    )?;
+    let spectral_json = crate::spectrum::to_json(&spectrum, nodes.len());
 
     let started = std::time::Instant::now();
-    let problem = Contrast::new(&target, &background, light);
+    let problem = Contrast::spectral(
+        nodes
+            .into_iter()
+            .map(|(w, mut ms)| {
+                let b = ms.remove(1);
+                (w, ms.remove(0), b)
+            })
+            .collect(),
+        light,
+    );
     let map = problem.map(&grid);
     let top = problem.rank(&map, &opts);
     let elapsed = started.elapsed();
@@ -110,7 +129,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         ("contrast.csv".to_string(), contrast_csv(&map)),
         (
             "best.json".to_string(),
-            best_json(args, &light, &map, &top, &opts, names),
+            best_json(args, &light, &map, &top, &opts, names, spectral_json),
         ),
     ];
     figures(&mut files, &map, &top, &opts, &problem, names)?;
@@ -121,8 +140,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         Ranking::PolarizationContrast => "polarization contrast |ΔS_lin|/mean S0",
     };
     println!(
-        "polbrdf contrast: target {t_name}, background {b_name}; sun at θi = {}°, φi = {}°; \
+        "polbrdf contrast: target {t_name}, background {b_name}{}; sun at θi = {}°, φi = {}°; \
          {} viewing directions in {:.0} ms",
+        describe(&spectrum),
         short(args.view.sun_zenith_deg),
         short(args.view.sun_azimuth_deg),
         grid.len(),
@@ -218,6 +238,7 @@ fn best_json(
     top: &[ContrastSample],
     opts: &RankOptions,
     (t_name, b_name): (&str, &str),
+    spectrum: Value,
 ) -> Vec<u8> {
     let stokes = light.stokes();
     let doc = json!({
@@ -236,6 +257,7 @@ fn best_json(
             "sun_azimuth_deg": num(args.view.sun_azimuth_deg),
             "stokes_normalized": stokes.0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
         },
+        "spectrum": spectrum,
         "grid": {
             "theta_step_deg": num(deg(map.grid.theta_step())),
             "phi_step_deg": num(deg(map.grid.phi_step())),
@@ -274,22 +296,22 @@ fn figures(
     map: &ContrastMap,
     top: &[ContrastSample],
     opts: &RankOptions,
-    problem: &Contrast<'_>,
+    problem: &Contrast,
     (t_name, b_name): (&str, &str),
 ) -> Result<(), CliError> {
     let grid = &map.grid;
     let values =
         |f: fn(&ContrastSample) -> f64| -> Vec<f64> { map.samples.iter().map(f).collect() };
-    let light = light_marks(&problem.light);
+    let light = light_marks(&problem.light());
     let ranked: Vec<PolarMark> = light
         .iter()
         .cloned()
         .chain(ranked_marks(top, opts.by))
         .collect();
-    let input = if problem.light.stokes() == Stokes::unpolarized() {
+    let input = if problem.light().stokes() == Stokes::unpolarized() {
         String::new()
     } else {
-        let s = problem.light.stokes().0;
+        let s = problem.light().stokes().0;
         format!(
             " (input S = {}, {}, {}, {})",
             short(s[0]),

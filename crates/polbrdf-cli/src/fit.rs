@@ -2,7 +2,9 @@
 
 use crate::error::CliError;
 use crate::output::write_output;
-use polbrdf_fit::{fit, Bound, FitOptions, FitResult, Measurement, Observable, Param};
+use polbrdf_fit::{
+    fit, fit_per_wavelength, Bound, FitOptions, FitResult, Measurement, Observable, Param,
+};
 use serde_json::{json, Map, Value};
 use std::path::Path;
 
@@ -16,6 +18,8 @@ pub struct Args<'a> {
     pub starts: usize,
     pub seed: u64,
     pub plot: Option<&'a Path>,
+    pub per_wavelength: bool,
+    pub index_out: Option<&'a Path>,
 }
 
 /// Runs `polbrdf fit`.
@@ -34,6 +38,7 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
                 observable: Observable::parse(&col.name).expect("measurable column names parse"),
                 value,
                 sigma: col.sigmas.as_ref().and_then(|s| s[row]),
+                wavelength_um: table.wavelengths.as_ref().map(|w| w[row]),
             });
         }
     }
@@ -42,6 +47,9 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         seed: args.seed,
         ..FitOptions::default()
     };
+    if args.per_wavelength {
+        return run_per_wavelength(args, &base, &free, &data, &opts);
+    }
     let result = fit(&base, &free, &data, &opts)?;
 
     let json = serde_json::to_string_pretty(&to_json(&result, args.data))
@@ -239,12 +247,13 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
 }
 
 /// Normalized residuals `(model − data)/σ` against the measurement number, one panel per kind of
-/// measurement (BRDF, DoLP, Mueller entries), with ±1σ and ±2σ guides.
+/// measurement (BRDF, DoLP, s/p BRDF, Mueller entries), with ±1σ and ±2σ guides.
 fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure {
     use polbrdf_plot::{Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
     let kind = |o: &Observable| match o {
         Observable::Brdf => "BRDF",
         Observable::Dolp => "DoLP",
+        Observable::BrdfS | Observable::BrdfP => "s/p BRDF",
         Observable::Mueller(..) => "Mueller entries",
     };
     let mut kinds: Vec<&str> = Vec::new();
@@ -283,6 +292,7 @@ fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure 
                 x_range: (0.0, n + 1.0),
                 y_range: (-top, top),
                 log_y: false,
+                log_x: false,
                 x_ticks: 8,
                 y_ticks: 9,
                 lines: vec![
@@ -307,5 +317,104 @@ fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure 
     Figure {
         size: (620 * panels.len() as u32, 480),
         panels,
+    }
+}
+
+/// `polbrdf fit --per-wavelength`: one fit per wavelength of the data.
+fn run_per_wavelength(
+    args: &Args<'_>,
+    base: &polbrdf::MaterialSpec,
+    free: &[Param],
+    data: &[Measurement],
+    opts: &FitOptions,
+) -> Result<(), CliError> {
+    let fits = fit_per_wavelength(base, free, data, opts)?;
+    let mut s = format!(
+        "polbrdf fit --per-wavelength: {} measurement(s) from {} at {} wavelength(s), {} free \
+         parameter(s)\n\n  {:>10}",
+        data.len(),
+        args.data.display(),
+        fits.len(),
+        free.len(),
+        "λ (µm)"
+    );
+    for p in free {
+        s += &format!(" {:>24}", p.name());
+    }
+    s += "   χ²/dof\n";
+    let mut entries = Vec::new();
+    let mut failed = Vec::new();
+    for f in &fits {
+        s += &format!("  {:>10.4}", f.wavelength_um);
+        match &f.result {
+            Ok(r) => {
+                for (k, _) in free.iter().enumerate() {
+                    s += &match &r.bounds[k] {
+                        Bound::Interior => {
+                            format!(" {:>12.6} ± {:<9.2e}", r.values[k], r.stderr[k])
+                        }
+                        Bound::AtLowerBound { upper_limit_95, .. } => format!(
+                            " {:>12} < {:<9.2e}",
+                            "0 (bound)",
+                            upper_limit_95.unwrap_or(f64::INFINITY)
+                        ),
+                    };
+                }
+                s += &format!(
+                    "   {:.3}{}\n",
+                    r.reduced_chi2,
+                    if r.converged { "" } else { "  NOT CONVERGED" }
+                );
+                let mut v = to_json(r, args.data);
+                v["wavelength_um"] = Value::from(f.wavelength_um);
+                entries.push(v);
+            }
+            Err(e) => {
+                s += &format!("   refused: {e}\n");
+                entries.push(json!({"wavelength_um": f.wavelength_um, "refused": e.to_string()}));
+                failed.push(f.wavelength_um);
+            }
+        }
+    }
+    eprint!("{s}");
+    let doc = json!({
+        "per_wavelength": entries,
+        "parameter_order": free.iter().map(|p| p.name()).collect::<Vec<_>>(),
+        "data": args.data.display().to_string(),
+    });
+    let json = serde_json::to_string_pretty(&doc).expect("JSON of finite and null values");
+    write_output(args.output, (json + "\n").as_bytes())?;
+    if let Some(path) = args.index_out {
+        let n_at = free.iter().position(|p| *p == Param::N).ok_or_else(|| {
+            CliError::Invalid("--index-out needs `n` among the free parameters".into())
+        })?;
+        let k_at = free.iter().position(|p| *p == Param::K);
+        let mut text = format!(
+            "# Effective index fitted by `polbrdf fit --per-wavelength` to {}\n\
+             REFERENCES: |\n    Fitted with polbrdf to {}\nCOMMENTS: |\n    n, k per wavelength; \
+             the fit's standard errors are in its fit.json\nDATA:\n  - type: tabulated nk\n    data: |\n",
+            args.data.display(),
+            args.data.display()
+        );
+        for f in &fits {
+            if let Ok(r) = &f.result {
+                let k = k_at.map_or(r.spec.k, |j| r.values[j]);
+                text += &format!("        {} {} {}\n", f.wavelength_um, r.values[n_at], k);
+            }
+        }
+        polbrdf_io::write_atomic(path, text.as_bytes())?;
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::Invalid(format!(
+            "the fit was refused at {} wavelength(s) ({} µm); the others were written",
+            failed.len(),
+            failed
+                .iter()
+                .map(|l| l.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )))
     }
 }

@@ -16,6 +16,8 @@ mod map;
 mod materials;
 mod output;
 mod reproduce;
+mod spectrum;
+mod sweep;
 
 use error::CliError;
 use std::process::ExitCode;
@@ -39,7 +41,8 @@ enum Command {
         #[arg(long, value_name = "FILE.toml|PRESET")]
         material: String,
         /// Geometry CSV with columns theta_i_deg, phi_i_deg, theta_r_deg, phi_r_deg (any order;
-        /// other columns are copied through). `-` reads standard input.
+        /// other columns are copied through), and wavelength_um (µm) for a material with a
+        /// spectral index. `-` reads standard input.
         #[arg(long, value_name = "geometry.csv")]
         input: PathBuf,
         /// Output CSV (written atomically); standard output when absent.
@@ -55,8 +58,9 @@ enum Command {
         /// Start values and fixed parameters: a TOML file or a preset name.
         #[arg(long, value_name = "INIT.toml|PRESET")]
         material: String,
-        /// Measurements: the four angle columns plus any of brdf, dolp, m00 … m33, each
-        /// optionally with sigma_<column> (1-σ). Empty cells mean "not measured".
+        /// Measurements: the four angle columns plus any of brdf, dolp, brdf_s, brdf_p, m00 …
+        /// m33, each optionally with sigma_<column> (1-σ), and wavelength_um (µm) for spectral
+        /// data. Empty cells mean "not measured".
         #[arg(long, value_name = "MEAS.csv")]
         data: PathBuf,
         /// Free parameters, comma-separated: any of n, k, a, b|sigma_deg, rho_d, rho_v,
@@ -78,6 +82,15 @@ enum Command {
         /// Also draw the normalized residuals (model − data)/σ: a .png or .svg file.
         #[arg(long, value_name = "residuals.png|.svg")]
         plot: Option<PathBuf>,
+        /// Fit the free parameters separately at each wavelength of the data (needs a
+        /// wavelength_um column): e.g. an effective index n(λ), k(λ). fit.json then holds one
+        /// fit per wavelength.
+        #[arg(long)]
+        per_wavelength: bool,
+        /// With --per-wavelength and n free: write the fitted n(λ), k(λ) as a refractiveindex.info
+        /// YAML file (tabulated nk), usable as `index = "FILE.yml"` in a material file.
+        #[arg(long, value_name = "index.yml", requires = "per_wavelength")]
+        index_out: Option<PathBuf>,
     },
     /// Regenerate the paper's Figs. 2–5 and Table 1 (PNG, SVG, CSV) with report.md, which
     /// checks each of the paper's claims against the computation.
@@ -102,6 +115,12 @@ enum Command {
     /// Writes into --out: map.csv (one row per viewing direction), brdf, dolp, aolp and
     /// overview (PNG and SVG).
     Map(map::Args),
+    /// BRDF, DoLP and AoLP of one or more materials at one geometry over a range of
+    /// wavelengths (spectral indices from the library or refractiveindex.info files).
+    ///
+    /// Writes into --out: spectrum.csv (wavelength_um, material, n, k, brdf, dolp, aolp_deg)
+    /// and spectrum.png/svg (the DoLP against wavelength).
+    Spectrum(sweep::Args),
     /// Throughput of the batch API (random valid geometries of `paint`): full-Mueller and
     /// BRDF+DoLP evaluations per second on one thread and on all threads (medians of several
     /// repeats), single-evaluation latency, a checksum and the CPU (with its SIMD level).
@@ -116,6 +135,8 @@ enum Command {
         /// Zenith step of the grid in degrees (the relative azimuth uses twice this step).
         #[arg(long, value_name = "DEG", default_value_t = 5.0)]
         grid_deg: f64,
+        #[command(flatten)]
+        spectral: spectrum::SpectralArgs,
     },
     /// List the built-in materials.
     Materials {
@@ -164,6 +185,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
             starts,
             seed,
             plot,
+            per_wavelength,
+            index_out,
         } => fit::run(&fit::Args {
             material: &material,
             data: &data,
@@ -173,13 +196,20 @@ fn run(cli: Cli) -> Result<(), CliError> {
             starts,
             seed,
             plot: plot.as_deref(),
+            per_wavelength,
+            index_out: index_out.as_deref(),
         }),
         Command::Reproduce { out } => reproduce::run(&out),
-        Command::Check { material, grid_deg } => check::run(&material, grid_deg),
+        Command::Check {
+            material,
+            grid_deg,
+            spectral,
+        } => check::run(&material, grid_deg, &spectral),
         Command::Materials { show } => materials::run(show.as_deref()),
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Map(args) => map::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Spectrum(args) => sweep::run(&args),
     }
 }

@@ -3,7 +3,8 @@
 //! options, material loading, polar panels, output directory).
 
 use crate::error::CliError;
-use polbrdf::analysis::contrast::{hemisphere, Illumination, ViewGrid, ViewSample};
+use crate::spectrum::{describe, load_spec, materials_at, SpectralArgs};
+use polbrdf::analysis::contrast::{hemisphere_mean, Illumination, ViewGrid, ViewSample};
 use polbrdf::{Material, Stokes};
 use polbrdf_io::CsvTable;
 use polbrdf_plot::{
@@ -42,6 +43,8 @@ pub struct ViewArgs {
     /// S0 = 1). Default: unpolarized, 1,0,0,0.
     #[arg(long, value_name = "S0,S1,S2,S3", allow_hyphen_values = true)]
     pub stokes: Option<String>,
+    #[command(flatten)]
+    pub spectral: SpectralArgs,
 }
 
 impl ViewArgs {
@@ -92,27 +95,6 @@ pub fn parse_stokes(text: &str) -> Result<Stokes, CliError> {
             "--stokes {text:?}: expected four numbers S0,S1,S2,S3"
         ))),
     }
-}
-
-/// Loads and builds the material given to `option`; returns it with a display name (its `name`
-/// key, else the preset name or file stem). Content errors name the option.
-pub fn load(arg: &str, option: &str) -> Result<(Material, String), CliError> {
-    let spec = polbrdf_io::load_material(arg).map_err(|e| {
-        if e.is_data_error() {
-            CliError::Invalid(format!("{option}: {e}"))
-        } else {
-            CliError::Io(e)
-        }
-    })?;
-    let name = spec.name.clone().unwrap_or_else(|| {
-        Path::new(arg)
-            .file_stem()
-            .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned())
-    });
-    let material = spec
-        .build()
-        .map_err(|e| CliError::Invalid(format!("{option} {arg}: {e}")))?;
-    Ok((material, name))
 }
 
 /// A grid angle (rad) in degrees, rounded to 1e-9° so that grid nodes print exactly.
@@ -234,8 +216,15 @@ pub struct Args {
 /// Runs `polbrdf map`.
 pub fn run(args: &Args) -> Result<(), CliError> {
     let (light, grid) = args.view.build()?;
-    let (material, name) = load(&args.material, "--material")?;
-    let samples = hemisphere(&material, &light, &grid);
+    let spectrum = args.view.spectral.spectrum()?;
+    let (spec, name) = load_spec(&args.material, "--material")?;
+    let nodes: Vec<(f64, Material)> =
+        materials_at(&[(&spec, "--material", &args.material)], &spectrum)?
+            .into_iter()
+            .map(|(w, mut ms)| (w, ms.remove(0)))
+            .collect();
+    let samples = hemisphere_mean(&nodes, &light, &grid);
+    let name = format!("{name}{}", describe(&spectrum));
     let files = map_files(&samples, &grid, &light, &name)?;
     let paths = write_all(&args.out, &files)?;
     let best = samples

@@ -99,6 +99,57 @@ fn fit_data(what: &'static str, csv: &str, code: i32, says: &[&'static str]) -> 
     )
 }
 
+/// A small valid refractiveindex.info file (0.4–0.8 µm).
+const YML: &str =
+    "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0.0\n        0.8 1.4 0.1\n";
+const SPECTRAL: &str = "index = \"library:Au/Johnson\"\nsigma_deg = 10\n";
+const GEO_WL: &str = "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,wavelength_um\n30,0,30,180,0.5\n";
+const BAND: &str = "wavelength_um,response\n0.45,0\n0.55,1\n0.65,0\n";
+
+/// `contrast` of a spectral target against paint with `extra` options and files.
+fn spectral_contrast(
+    what: &'static str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    extra: &[&'static str],
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let mut args = vec![
+        "contrast",
+        "--target",
+        "{d}/m.toml",
+        "--background",
+        "paint",
+        "--sun-zenith-deg",
+        "40",
+        "--out",
+        "{d}/out",
+    ];
+    args.extend_from_slice(extra);
+    let mut f = vec![("m.toml", t(SPECTRAL))];
+    f.extend(files);
+    case(what, f, &args, code, says)
+}
+
+/// `eval` of the spectral material on a geometry file `g.csv` holding `csv`.
+fn eval_spectral(what: &'static str, csv: &str, code: i32, says: &[&'static str]) -> Case {
+    case(
+        what,
+        vec![("m.toml", t(SPECTRAL)), ("g.csv", t(csv))],
+        &[
+            "eval",
+            "--material",
+            "{d}/m.toml",
+            "--input",
+            "{d}/g.csv",
+            "--output",
+            "{d}/out.csv",
+        ],
+        code,
+        says,
+    )
+}
+
 fn table() -> Vec<Case> {
     let long_field = "7".repeat(100_000) + "x";
     vec![
@@ -128,6 +179,41 @@ fn table() -> Vec<Case> {
         case("binary material file", vec![("m.toml", vec![0, 159, 146, 150, 255, 0xfe]), ("g.csv", t(GEO))],
             &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 3, &["m.toml:1", "UTF-8"]),
         eval_material("BOM, CRLF, k = 0, rho = 0, huge sigma (valid)", "\u{feff}n = 1.5\r\nk = 0\r\nsigma_deg = 1e6\r\nrho_d = 0\r\n", 0, &[]),
+        // Spectral indices in material files.
+        eval_material("unknown library entry", "index = \"library:Au/Nobody\"\nsigma_deg = 5\n", 3, &["m.toml:1", "`index`", "Au/Johnson"]),
+        eval_material("index and n", "index = \"library:Au/Johnson\"\nn = 1.5\nsigma_deg = 5\n", 3, &["m.toml:2", "`n`", "not both"]),
+        eval_material("index is a number", "index = 5\nsigma_deg = 5\n", 3, &["m.toml:1", "`index`", "string"]),
+        eval_material("index file missing", "index = \"nowhere.yml\"\nsigma_deg = 5\n", 3, &["m.toml:1", "`index`", "nowhere.yml"]),
+        case("index file malformed", vec![("m.toml", t("index = \"y.yml\"\nsigma_deg = 5\n")), ("y.yml", t("DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 x\n")), ("g.csv", t(GEO_WL))],
+            &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 3, &["m.toml:1", "y.yml:"]),
+        case("index file relative to the material file (valid)", vec![("m.toml", t("index = \"y.yml\"\nsigma_deg = 5\n")), ("y.yml", t(YML)), ("g.csv", t(GEO_WL))],
+            &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 0, &[]),
+        // Wavelengths in geometry files.
+        eval_spectral("spectral material, no wavelength column", GEO, 3, &["g.csv", "`wavelength_um`"]),
+        eval_spectral("wavelength outside the data", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,wavelength_um\n30,0,30,180,0.5\n30,0,30,180,3.0\n", 3, &["g.csv:3", "`wavelength_um`", "Au/Johnson", "1.937"]),
+        eval_spectral("zero wavelength", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,wavelength_um\n30,0,30,180,0\n", 3, &["g.csv:2", "`wavelength_um`", "> 0"]),
+        eval_spectral("NaN wavelength", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,wavelength_um\n30,0,30,180,NaN\n", 3, &["g.csv:2", "`wavelength_um`"]),
+        eval_spectral("text wavelength", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,wavelength_um\n30,0,30,180,green\n", 3, &["g.csv:2", "`wavelength_um`", "green"]),
+        // Wavelength options and band files.
+        spectral_contrast("spectral target without a wavelength", vec![], &[], 3, &["--target", "--wavelength-um", "--band"]),
+        spectral_contrast("--wavelength-um 0", vec![], &["--wavelength-um", "0"], 3, &["--wavelength-um", "> 0"]),
+        spectral_contrast("--wavelength-um outside the data", vec![], &["--wavelength-um", "5"], 3, &["--target", "Au/Johnson", "1.937"]),
+        spectral_contrast("band and wavelength", vec![("b.csv", t(BAND))], &["--band", "{d}/b.csv", "--wavelength-um", "0.5"], 2, &["--band"]),
+        spectral_contrast("band: no overlap with the data", vec![("b.csv", t("wavelength_um,response\n8,1\n12,1\n"))], &["--band", "{d}/b.csv"], 3, &["Au/Johnson", "1.937"]),
+        spectral_contrast("band: missing column", vec![("b.csv", t("wavelength_um,weight\n0.5,1\n0.6,1\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv", "response"]),
+        spectral_contrast("band: wavelengths not increasing", vec![("b.csv", t("wavelength_um,response\n0.5,1\n0.6,1\n0.55,1\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv:4", "`wavelength_um`", "increase"]),
+        spectral_contrast("band: negative response", vec![("b.csv", t("wavelength_um,response\n0.5,1\n0.6,-1\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv:3", "`response`"]),
+        spectral_contrast("band: zero response", vec![("b.csv", t("wavelength_um,response\n0.5,0\n0.6,0\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv", "zero everywhere"]),
+        spectral_contrast("band: one row", vec![("b.csv", t("wavelength_um,response\n0.5,1\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv", "two"]),
+        spectral_contrast("band: empty file", vec![("b.csv", vec![])], &["--band", "{d}/b.csv"], 3, &["b.csv", "empty"]),
+        spectral_contrast("band: text", vec![("b.csv", t("wavelength_um,response\n0.5,high\n0.6,1\n"))], &["--band", "{d}/b.csv"], 3, &["b.csv:2", "`response`", "high"]),
+        spectral_contrast("band: missing file", vec![], &["--band", "{d}/none.csv"], 4, &["none.csv"]),
+        spectral_contrast("band step 0", vec![("b.csv", t(BAND))], &["--band", "{d}/b.csv", "--band-step-um", "0"], 3, &["--band-step-um"]),
+        spectral_contrast("band (valid)", vec![("b.csv", t(BAND))], &["--band", "{d}/b.csv"], 0, &[]),
+        case("spectrum: bad range", vec![], &["spectrum", "--material", "paint", "--range-um", "2,1", "--out", "{d}/out"], 3, &["--range-um"]),
+        case("spectrum: one point", vec![], &["spectrum", "--material", "paint", "--points", "1", "--out", "{d}/out"], 3, &["--points"]),
+        case("spectrum: range outside the data", vec![("m.toml", t(SPECTRAL))], &["spectrum", "--material", "{d}/m.toml", "--range-um", "0.5,5", "--out", "{d}/out"], 3, &["Au/Johnson", "1.937"]),
+        case("fit per wavelength without wavelengths", vec![("d.csv", t(MEAS))], &["fit", "--material", "paint", "--data", "{d}/d.csv", "--free", "n", "--per-wavelength", "--output", "{d}/out.json"], 3, &["wavelength_um"]),
         // Geometry files.
         eval_geometry("empty geometry file", vec![], 3, &["g.csv", "empty"]),
         eval_geometry("header only (valid: no rows)", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n"), 0, &[]),

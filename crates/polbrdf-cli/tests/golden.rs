@@ -24,6 +24,7 @@ fn the_readme_fit_is_unchanged() {
                     observable: Observable::parse(&col.name).unwrap(),
                     value,
                     sigma: col.sigmas.as_ref().and_then(|s| s[row]),
+                    wavelength_um: None,
                 });
             }
         }

@@ -9,3 +9,4 @@ mod eval;
 mod fit;
 mod golden;
 mod map;
+mod spectral;

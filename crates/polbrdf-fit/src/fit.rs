@@ -9,7 +9,8 @@ use crate::zbs::{self, ZbsFit, ZbsPoint};
 use polbrdf::engine::Prepared;
 use polbrdf::sample::SplitMix64;
 use polbrdf::{
-    AngleVariables, Engine, Evaluation, Geometry, GeometryBatch, Material, MaterialSpec, Mueller,
+    AngleVariables, Engine, Evaluation, Geometry, GeometryBatch, IndexColumns, Material,
+    MaterialSpec, Mueller,
 };
 use rayon::prelude::*;
 
@@ -20,16 +21,22 @@ pub enum Observable {
     Brdf,
     /// DoLP for unpolarized illumination (eq. 13).
     Dolp,
+    /// BRDF for s-polarized incidence, no analyzer: `F·(1, 1, 0, 0)` → `F00 + F01` (sr⁻¹).
+    BrdfS,
+    /// BRDF for p-polarized incidence, no analyzer: `F·(1, −1, 0, 0)` → `F00 − F01` (sr⁻¹).
+    BrdfP,
     /// Mueller-matrix BRDF entry `F_ij` (sr⁻¹, psps basis).
     Mueller(usize, usize),
 }
 
 impl Observable {
-    /// From a column name: `brdf`, `dolp`, `m00` … `m33`.
+    /// From a column name: `brdf`, `dolp`, `brdf_s`, `brdf_p`, `m00` … `m33`.
     pub fn parse(name: &str) -> Option<Self> {
         match name {
             "brdf" => Some(Observable::Brdf),
             "dolp" => Some(Observable::Dolp),
+            "brdf_s" => Some(Observable::BrdfS),
+            "brdf_p" => Some(Observable::BrdfP),
             _ => {
                 let d: Vec<usize> = name
                     .strip_prefix('m')?
@@ -49,8 +56,15 @@ impl Observable {
         match self {
             Observable::Brdf => "brdf".into(),
             Observable::Dolp => "dolp".into(),
+            Observable::BrdfS => "brdf_s".into(),
+            Observable::BrdfP => "brdf_p".into(),
             Observable::Mueller(i, j) => format!("m{i}{j}"),
         }
+    }
+
+    /// Whether the quantity needs more of `F` than `F00` and the DoLP.
+    pub fn needs_matrix(&self) -> bool {
+        !matches!(self, Observable::Brdf | Observable::Dolp)
     }
 
     /// The model's value of this quantity.
@@ -58,11 +72,14 @@ impl Observable {
         self.of_pbrdf(&e.pbrdf)
     }
 
-    /// This quantity of a pBRDF `F`: `F00`, the DoLP of `F·(1, 0, 0, 0)`, or `F_ij`.
+    /// This quantity of a pBRDF `F`: `F00`, the DoLP of `F·(1, 0, 0, 0)`, `F00 ± F01` or `F_ij`
+    /// (psps basis: `(1, 1, 0, 0)` is s-polarized, docs/model.md §2).
     pub fn of_pbrdf(&self, f: &Mueller) -> f64 {
         match *self {
             Observable::Brdf => f.m00(),
             Observable::Dolp => f.dolp_unpolarized(),
+            Observable::BrdfS => f.m00() + f[(0, 1)],
+            Observable::BrdfP => f.m00() - f[(0, 1)],
             Observable::Mueller(i, j) => f[(i, j)],
         }
     }
@@ -79,6 +96,9 @@ pub struct Measurement {
     pub value: f64,
     /// Its 1-σ uncertainty, if known (> 0).
     pub sigma: Option<f64>,
+    /// The vacuum wavelength (µm), when the data are spectral: a material with a spectral
+    /// index is evaluated with its index there.
+    pub wavelength_um: Option<f64>,
 }
 
 /// How the model is evaluated at the measured geometries.
@@ -213,6 +233,9 @@ struct Problem<'a> {
     /// model is 0 whatever ρ is) — the volume term's exact derivatives (`∂f_v/∂ρ_D` is 1
     /// above the horizon).
     dfv_drho_v: Vec<f64>,
+    /// For a material with a spectral index: `(n, k)` of every element at its wavelength, fixed
+    /// during the fit, and the wavelength the material is built at.
+    spectral: Option<(Vec<f64>, Vec<f64>, f64)>,
 }
 
 /// The model at every measured geometry: `F00` and the DoLP, or the whole matrix.
@@ -239,8 +262,8 @@ impl Values {
             (Values::BrdfDolp(b, _), Observable::Brdf) => b[g],
             (Values::BrdfDolp(_, d), Observable::Dolp) => d[g],
             (Values::Full(f), obs) => obs.of_pbrdf(&Mueller::from_row_major(&f[g])),
-            (Values::BrdfDolp(..), Observable::Mueller(..)) => {
-                unreachable!("the full path for Mueller entries")
+            (Values::BrdfDolp(..), _) => {
+                unreachable!("the full path for quantities that need the matrix")
             }
         }
     }
@@ -255,29 +278,44 @@ impl Problem<'_> {
         spec
     }
 
+    /// The material at natural parameter values `x` (built at the first element's wavelength
+    /// for a spectral index, whose value per element [`Problem::values`] supplies).
+    fn material_at(&self, x: &[f64]) -> polbrdf::Result<Material> {
+        let spec = self.spec_at(x);
+        match &self.spectral {
+            Some((_, _, l)) => spec.build_at(*l),
+            None => spec.build(),
+        }
+    }
+
     /// Weighted residuals `(model − data)/σ` at natural parameter values `x`.
     fn residuals(&self, x: &[f64], out: &mut [f64]) -> bool {
-        let Ok(material) = self.spec_at(x).build() else {
+        let Ok(material) = self.material_at(x) else {
             return false;
         };
         self.residuals_of(&material, out);
         out.iter().all(|v| v.is_finite())
     }
 
-    /// The model at every measured geometry.
+    /// The model at every measured element (geometry, and wavelength for spectral data).
     fn values(&self, material: &Material) -> Values {
         let n = self.batch.len();
+        let engine = match &self.spectral {
+            Some((nn, kk, _)) => Engine::new(material)
+                .with_index(IndexColumns::new(nn, kk).expect("validated when prepared")),
+            None => Engine::new(material),
+        };
         match self.evaluator {
             Evaluator::Engine if self.full => {
                 let mut f = vec![[0.0; 16]; n];
-                Engine::new(material)
+                engine
                     .mueller_prepared_into(&self.prepared, &mut f)
                     .expect("lengths match");
                 Values::Full(f)
             }
             Evaluator::Engine => {
                 let (mut brdf, mut dolp) = (vec![0.0; n], vec![0.0; n]);
-                Engine::new(material)
+                engine
                     .brdf_dolp_prepared_into(&self.prepared, &mut brdf, &mut dolp)
                     .expect("lengths match");
                 Values::BrdfDolp(brdf, dolp)
@@ -286,9 +324,20 @@ impl Problem<'_> {
                 let f: Vec<[f64; 16]> = self
                     .angles
                     .par_iter()
+                    .enumerate()
                     .with_min_len(256)
-                    .map(|a| match a {
-                        Some(v) => material.evaluate_angles(v).pbrdf.to_row_major(),
+                    .map(|(e, a)| match a {
+                        Some(v) => {
+                            let index = match &self.spectral {
+                                Some((nn, kk, _)) => polbrdf::RefractiveIndex::new(nn[e], kk[e])
+                                    .expect("validated when prepared"),
+                                None => material.index(),
+                            };
+                            material
+                                .evaluate_angles_with_index(v, index)
+                                .pbrdf
+                                .to_row_major()
+                        }
                         None => [0.0; 16],
                     })
                     .collect();
@@ -325,7 +374,11 @@ impl Problem<'_> {
                 };
                 let (f00, dolp) = v.f00_dolp(g);
                 w * match obs {
-                    Observable::Brdf | Observable::Mueller(0, 0) => dfv,
+                    // f_v adds to F00 only: F00 ± F01 moves with it, F01 does not.
+                    Observable::Brdf
+                    | Observable::BrdfS
+                    | Observable::BrdfP
+                    | Observable::Mueller(0, 0) => dfv,
                     Observable::Dolp if f00 > 0.0 => -dolp * dfv / f00,
                     _ => 0.0,
                 }
@@ -393,7 +446,7 @@ impl FitObjective<'_, '_> {
 
 impl lm::Objective for FitObjective<'_, '_> {
     fn residuals(&self, u: &[f64], r: &mut [f64]) -> bool {
-        let Ok(material) = self.problem.spec_at(&self.to_x(u)).build() else {
+        let Ok(material) = self.problem.material_at(&self.to_x(u)) else {
             return false;
         };
         let v = self.problem.values(&material);
@@ -451,7 +504,9 @@ pub fn fit(
     data: &[Measurement],
     opts: &FitOptions,
 ) -> Result<FitResult, FitError> {
-    base.build()?;
+    if !base.is_spectral() {
+        base.build()?;
+    }
     if free.is_empty() {
         return Err(FitError::BadParameterList("no free parameter".into()));
     }
@@ -463,12 +518,14 @@ pub fn fit(
             parameters: p,
         });
     }
-    // Group consecutive measurements at the same geometry.
+    // Group consecutive measurements at the same geometry (and wavelength).
     let mut geoms: Vec<Geometry> = Vec::new();
+    let mut element_wl: Vec<Option<f64>> = Vec::new();
     let mut rows = Vec::with_capacity(m);
     for d in data {
-        if geoms.last() != Some(&d.geometry) {
+        if geoms.last() != Some(&d.geometry) || element_wl.last() != Some(&d.wavelength_um) {
             geoms.push(d.geometry);
+            element_wl.push(d.wavelength_um);
         }
         rows.push((
             geoms.len() - 1,
@@ -477,6 +534,35 @@ pub fn fit(
             d.sigma.map_or(1.0, |s| 1.0 / s),
         ));
     }
+    // A spectral index: fixed per element at its wavelength.
+    let spectral = match &base.spectral {
+        None => None,
+        Some(src) => {
+            if let Some(p) = free.iter().find(|p| matches!(p, Param::N | Param::K)) {
+                return Err(FitError::BadParameterList(format!(
+                    "`{}` comes from the spectral index `{}`: fit n and k per wavelength \
+                     (--per-wavelength), or use a constant-index material",
+                    p.name(),
+                    src.source
+                )));
+            }
+            let (mut nn, mut kk) = (Vec::new(), Vec::new());
+            for l in &element_wl {
+                let Some(l) = l else {
+                    return Err(FitError::BadParameterList(format!(
+                        "the material has a spectral index (`{}`): every measurement needs a \
+                         wavelength (a `wavelength_um` column)",
+                        src.source
+                    )));
+                };
+                let index = base.index_at(*l)?;
+                nn.push(index.n());
+                kk.push(index.k());
+            }
+            let first = element_wl[0].expect("checked above");
+            Some((nn, kk, first))
+        }
+    };
     let cols: [Vec<f64>; 4] = [
         geoms.iter().map(Geometry::theta_i).collect(),
         geoms.iter().map(Geometry::phi_i).collect(),
@@ -484,16 +570,21 @@ pub fn fit(
         geoms.iter().map(Geometry::phi_r).collect(),
     ];
     let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3])?;
+    let base_material = match &spectral {
+        Some((_, _, l)) => base.build_at(*l)?,
+        None => base.build()?,
+    };
     let problem = Problem {
         base: base.clone(),
         free,
-        prepared: Engine::new(&base.build()?).prepare(&batch),
+        prepared: Engine::new(&base_material).prepare(&batch),
         batch,
+        spectral,
         angles: match opts.evaluator {
             Evaluator::OneGeometry => geoms.iter().map(Geometry::angle_variables).collect(),
             Evaluator::Engine => Vec::new(),
         },
-        full: rows.iter().any(|r| matches!(r.1, Observable::Mueller(..))),
+        full: rows.iter().any(|r| r.1.needs_matrix()),
         dfv_drho_v: geoms
             .iter()
             .map(|g| {
@@ -669,7 +760,7 @@ pub fn fit(
         .collect();
 
     let spec = problem.spec_at(&x);
-    let material = spec.build()?;
+    let material = problem.material_at(&x)?;
     let sigma_scale = scale.sqrt();
     let mut model = vec![0.0; m];
     problem.model_values(&material, &mut model);
@@ -703,6 +794,71 @@ pub fn fit(
         spec,
         residuals,
     })
+}
+
+/// One wavelength's fit of [`fit_per_wavelength`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct WavelengthFit {
+    /// The wavelength (µm).
+    pub wavelength_um: f64,
+    /// The measurements at it.
+    pub measurements: usize,
+    /// The fit there, or why it was refused.
+    pub result: Result<FitResult, FitError>,
+}
+
+/// Fits the `free` parameters separately at each wavelength of the data (every measurement
+/// needs one): e.g. an effective index `n(λ)`, `k(λ)` for a material no database has. With a
+/// spectral `base`, its index at each wavelength is the start of n and k there. The wavelengths
+/// are fitted in parallel and returned in increasing order; a refusal at one wavelength is
+/// reported there and does not stop the others.
+///
+/// # Errors
+/// [`FitError::BadParameterList`] when a measurement has no wavelength.
+pub fn fit_per_wavelength(
+    base: &MaterialSpec,
+    free: &[Param],
+    data: &[Measurement],
+    opts: &FitOptions,
+) -> Result<Vec<WavelengthFit>, FitError> {
+    let mut wavelengths: Vec<f64> = Vec::new();
+    for d in data {
+        let Some(l) = d.wavelength_um else {
+            return Err(FitError::BadParameterList(
+                "a fit per wavelength needs the wavelength of every measurement (a \
+                 `wavelength_um` column)"
+                    .into(),
+            ));
+        };
+        if !wavelengths.contains(&l) {
+            wavelengths.push(l);
+        }
+    }
+    wavelengths.sort_by(f64::total_cmp);
+    Ok(wavelengths
+        .par_iter()
+        .map(|&l| {
+            let subset: Vec<Measurement> = data
+                .iter()
+                .filter(|d| d.wavelength_um == Some(l))
+                .copied()
+                .collect();
+            let result = (|| {
+                let mut at = base.clone();
+                if at.spectral.is_some() {
+                    let index = at.index_at(l)?;
+                    (at.n, at.k) = (index.n(), index.k());
+                    at.spectral = None;
+                }
+                fit(&at, free, &subset, opts)
+            })();
+            WavelengthFit {
+                wavelength_um: l,
+                measurements: subset.len(),
+                result,
+            }
+        })
+        .collect())
 }
 
 /// `Δχ²` of a one-sided 95 % limit: `1.6449²`.
@@ -1034,7 +1190,7 @@ fn zero_bistatic_start(
     free: &[Param],
     data: &[Measurement],
 ) -> Option<ZbsFit> {
-    if !free.iter().any(|p| matches!(p, Param::B | Param::SigmaDeg)) {
+    if base.is_spectral() || !free.iter().any(|p| matches!(p, Param::B | Param::SigmaDeg)) {
         return None;
     }
     let points: Vec<ZbsPoint> = data

@@ -16,5 +16,8 @@ pub mod synthetic;
 pub mod zbs;
 
 pub use error::FitError;
-pub use fit::{fit, Bound, Evaluator, FitOptions, FitResult, Measurement, Observable, Residual};
+pub use fit::{
+    fit, fit_per_wavelength, Bound, Evaluator, FitOptions, FitResult, Measurement, Observable,
+    Residual, WavelengthFit,
+};
 pub use params::Param;

@@ -112,12 +112,20 @@ impl Param {
     /// # Errors
     /// [`FitError::Model`] if the spec is invalid.
     pub fn value(self, spec: &MaterialSpec) -> Result<f64, FitError> {
+        // D does not depend on the index: a spectral spec is read with a placeholder index.
+        let distribution = || -> Result<polbrdf::Distribution, FitError> {
+            let mut s = spec.clone();
+            if s.spectral.take().is_some() {
+                (s.n, s.k) = (1.5, 0.0);
+            }
+            Ok(s.build()?.distribution())
+        };
         Ok(match self {
             Param::N => spec.n,
             Param::K => spec.k,
-            Param::A => spec.build()?.distribution().a(),
-            Param::B => spec.build()?.distribution().b(),
-            Param::SigmaDeg => spec.build()?.distribution().sigma().to_degrees(),
+            Param::A => distribution()?.a(),
+            Param::B => distribution()?.b(),
+            Param::SigmaDeg => distribution()?.sigma().to_degrees(),
             Param::RhoD => spec.rho_d,
             Param::RhoV => spec.rho_v,
             Param::TauDeg => spec.tau_deg,

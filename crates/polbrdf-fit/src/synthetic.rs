@@ -6,8 +6,9 @@ use crate::fit::{Measurement, Observable};
 use polbrdf::sample::SplitMix64;
 use polbrdf::{Engine, Geometry, Material};
 
-/// Measurements of `observables` at every geometry, from `material` (evaluated by the engine),
-/// with Gaussian noise of standard deviation `relative_noise·|value| + absolute_noise`; each
+/// Measurements of `observables` at every geometry, from `material` (evaluated by the engine;
+/// each measurement carries the wavelength the material was built at, if any), with Gaussian
+/// noise of standard deviation `relative_noise·|value| + absolute_noise`; each
 /// measurement carries that σ when `report_sigma` is true.
 pub fn measurements(
     material: &Material,
@@ -31,6 +32,7 @@ pub fn measurements(
                 observable: obs,
                 value: v + sigma * rng.normal(),
                 sigma: report_sigma.then_some(sigma),
+                wavelength_um: material.wavelength_um(),
             });
         }
     }

@@ -29,7 +29,13 @@ pub struct GeometryTable {
     pub lines: Vec<usize>,
     /// One validated geometry per row.
     pub geometries: Vec<Geometry>,
+    /// The `wavelength_um` column (µm, finite and > 0), when the file has one: the wavelength
+    /// of each row for a spectral material (the column is also copied through).
+    pub wavelengths: Option<Vec<f64>>,
 }
+
+/// The optional wavelength column of geometry and measurement files (µm).
+pub const WAVELENGTH_COLUMN: &str = "wavelength_um";
 
 /// The bytes of `path`, or of standard input for `-`.
 pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
@@ -231,12 +237,79 @@ pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
         })?;
         geometries.push(g);
     }
+    let wavelengths = match headers.iter().position(|h| h == WAVELENGTH_COLUMN) {
+        None => None,
+        Some(c) => Some(
+            rows.iter()
+                .zip(&lines)
+                .map(|(row, &line)| {
+                    let v = parse_number(path, line, WAVELENGTH_COLUMN, &row[c])?;
+                    if v.is_finite() && v > 0.0 {
+                        Ok(v)
+                    } else {
+                        Err(Error::Field {
+                            path: path.to_path_buf(),
+                            line,
+                            field: WAVELENGTH_COLUMN.into(),
+                            message: format!("{v}: a wavelength must be finite and > 0 (µm)"),
+                        })
+                    }
+                })
+                .collect::<Result<Vec<f64>>>()?,
+        ),
+    };
     Ok(GeometryTable {
         path: path.to_path_buf(),
         headers,
         rows,
         lines,
         geometries,
+        wavelengths,
+    })
+}
+
+/// The columns of a band file: the wavelength (µm) and the relative spectral response.
+pub const BAND_COLUMNS: [&str; 2] = ["wavelength_um", "response"];
+
+/// Reads a band file (CSV with columns `wavelength_um, response`: a relative spectral response,
+/// linear between the rows and zero outside, wavelengths strictly increasing).
+///
+/// # Errors
+/// [`Error::Field`] naming the file, the line and the column for a malformed or invalid value;
+/// [`Error::File`] for a missing column, fewer than two rows, or a response zero everywhere.
+pub fn read_band_csv(path: &Path) -> Result<polbrdf::Band> {
+    parse_band_csv(&read_all(path)?, path)
+}
+
+/// Parses band CSV bytes ([`read_band_csv`]); `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_band_csv`].
+pub fn parse_band_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::Band> {
+    let RawTable {
+        rows, lines, index, ..
+    } = parse_table(bytes, path, &BAND_COLUMNS)?;
+    let mut wl = Vec::with_capacity(rows.len());
+    let mut response = Vec::with_capacity(rows.len());
+    for (row, &line) in rows.iter().zip(&lines) {
+        wl.push(parse_number(path, line, BAND_COLUMNS[0], &row[index[0]])?);
+        response.push(parse_number(path, line, BAND_COLUMNS[1], &row[index[1]])?);
+    }
+    let name = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    polbrdf::Band::new(&name, wl, response).map_err(|e| match e {
+        polbrdf::Error::InvalidParameterAt { name, index, .. } => Error::Field {
+            path: path.to_path_buf(),
+            line: lines[index],
+            field: name.to_string(),
+            message: e.to_string(),
+        },
+        other => Error::File {
+            path: path.to_path_buf(),
+            message: other.to_string(),
+        },
     })
 }
 

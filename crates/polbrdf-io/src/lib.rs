@@ -1,16 +1,24 @@
-//! File formats of polbrdf: material files (flat TOML), geometry and result CSV, and atomic
+//! File formats of polbrdf: material files (flat TOML), geometry and result CSV, refractive-index
+//! files of the refractiveindex.info database (YAML) with a built-in library of them, and atomic
 //! output. Every error names the file, and where it applies the line and the field.
 
 #![warn(missing_docs)]
 
 pub mod csv_io;
 pub mod error;
+pub mod library;
 pub mod material;
 pub mod measurements;
+pub mod refractive;
 pub mod write;
 
-pub use csv_io::{parse_geometry_csv, read_geometry_csv, CsvTable, GeometryTable};
+pub use csv_io::{
+    parse_band_csv, parse_geometry_csv, read_band_csv, read_geometry_csv, CsvTable, GeometryTable,
+};
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};
 pub use measurements::{parse_measurements_csv, read_measurements_csv, MeasurementTable};
+pub use refractive::{
+    parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
+};
 pub use write::{write_atomic, write_files};

@@ -21,7 +21,8 @@ fn line_of(text: &str, pos: usize) -> usize {
         + 1
 }
 
-/// Parses a material file's text; `path` is used in error messages only.
+/// Parses a material file's text; `path` names it in error messages, and its folder is where a
+/// relative `index = "file.yml"` is found (`library:<id>` names a library entry instead).
 ///
 /// # Errors
 /// [`Error::Syntax`] for malformed TOML (including duplicate keys), [`Error::Field`] for an
@@ -45,6 +46,7 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
 
     let mut spec = MaterialSpec::new(f64::NAN, f64::NAN);
     spec.sigma_deg = None;
+    spec.k = 0.0;
     let mut have_n = false;
     for (key, value) in &table {
         let line = line_of(text, key.span().start);
@@ -73,18 +75,77 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             }
         };
         have_n |= known == "n";
+        if known == "index" {
+            let KeyValue::Text(source) = value else {
+                return Err(field_err(
+                    known,
+                    line,
+                    format!(
+                        "expected {}",
+                        polbrdf::model::spec::expected(known).unwrap_or("a string")
+                    ),
+                ));
+            };
+            // A library id or a refractiveindex.info YAML file, relative to this file's folder.
+            let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+            let index = crate::library::resolve(&source, folder)
+                .map_err(|e| field_err(known, line, e.to_string()))?;
+            // A file is recorded by its absolute path, so that a material written elsewhere
+            // (`material_to_toml`, a fit's output) still finds it.
+            let source = match source.strip_prefix(crate::library::PREFIX) {
+                Some(_) => source,
+                None => {
+                    let p = Path::new(&source);
+                    let p = match folder {
+                        Some(dir) if p.is_relative() => dir.join(p),
+                        _ => p.to_path_buf(),
+                    };
+                    std::fs::canonicalize(&p)
+                        .map(|p| p.to_string_lossy().into_owned())
+                        .unwrap_or(source)
+                }
+            };
+            spec.spectral = Some(polbrdf::model::SpectralSource {
+                source,
+                index: std::sync::Arc::new(index),
+            });
+            continue;
+        }
         spec.set(known, value)
             .map_err(|m| field_err(known, line, m))?;
     }
-    if !have_n {
+    if let Some(&line) = lines.get("index") {
+        if let Some(both) = ["n", "k"].into_iter().find(|k| lines.contains_key(k)) {
+            return Err(field_err(
+                both,
+                lines[both],
+                format!(
+                    "give either `index` (line {line}: a spectral index) or the constant `n`, `k`, \
+                     not both"
+                ),
+            ));
+        }
+    } else if !have_n {
         return Err(Error::File {
             path: path.to_path_buf(),
-            message: "missing required key `n` (real refractive index)".into(),
+            message: "missing required key `n` (real refractive index), or `index` (a spectral \
+                      index: \"library:<id>\" or a refractiveindex.info YAML file)"
+                .into(),
         });
     }
-    // Let the core validate values; map its parameter names back to the file's lines.
-    spec.build().map_err(|e| {
+    // Let the core validate values; map its parameter names back to the file's lines. A
+    // spectral material is validated at the first wavelength of its data.
+    let built = match spec.wavelength_range() {
+        Some((lo, _)) => spec.build_at(lo),
+        None => spec.build(),
+    };
+    built.map_err(|e| {
         let key = match &e {
+            polbrdf::Error::InvalidParameter { name, .. }
+                if spec.is_spectral() && (*name == "n" || *name == "k") =>
+            {
+                Some("index")
+            }
             polbrdf::Error::InvalidParameter { name, .. } => Some(*name),
             polbrdf::Error::InconsistentParameters(_) => {
                 Some(if spec.b.is_some() { "b" } else { "sigma_deg" })

@@ -6,9 +6,15 @@ use crate::error::{Error, Result};
 use polbrdf::Geometry;
 use std::path::{Path, PathBuf};
 
-/// Names of the quantities a measurement file may hold: `brdf`, `dolp`, `m00` … `m33`.
+/// Names of the quantities a measurement file may hold: `brdf`, `dolp`, `brdf_s`, `brdf_p`
+/// (s- and p-polarized incidence, no analyzer: `F00 ± F01`), `m00` … `m33`.
 pub fn measurable_columns() -> Vec<String> {
-    let mut cols = vec!["brdf".to_string(), "dolp".into()];
+    let mut cols = vec![
+        "brdf".to_string(),
+        "dolp".into(),
+        "brdf_s".into(),
+        "brdf_p".into(),
+    ];
     cols.extend((0..16).map(|k| format!("m{}{}", k / 4, k % 4)));
     cols
 }
@@ -17,7 +23,7 @@ pub fn measurable_columns() -> Vec<String> {
 /// cell empty (not measured in that row).
 #[derive(Debug, Clone)]
 pub struct MeasuredColumn {
-    /// `brdf`, `dolp` or `mIJ`.
+    /// `brdf`, `dolp`, `brdf_s`, `brdf_p` or `mIJ`.
     pub name: String,
     /// One entry per row.
     pub values: Vec<Option<f64>>,
@@ -36,6 +42,8 @@ pub struct MeasurementTable {
     pub geometries: Vec<Geometry>,
     /// Every measured column present, in file order.
     pub columns: Vec<MeasuredColumn>,
+    /// The `wavelength_um` of each row (µm), when the file has that column.
+    pub wavelengths: Option<Vec<f64>>,
 }
 
 /// Reads a measurement CSV. Columns other than the angles, the measurable quantities and their
@@ -61,6 +69,7 @@ pub fn parse_measurements_csv(bytes: &[u8], path: &Path) -> Result<MeasurementTa
         rows,
         lines,
         geometries,
+        wavelengths,
         ..
     } = crate::csv_io::parse_geometry_csv(bytes, path)?;
     let measurable = measurable_columns();
@@ -146,5 +155,6 @@ pub fn parse_measurements_csv(bytes: &[u8], path: &Path) -> Result<MeasurementTa
         lines,
         geometries,
         columns,
+        wavelengths,
     })
 }

@@ -2,3 +2,4 @@
 
 mod csv_files;
 mod material_files;
+mod refractive;

@@ -36,6 +36,7 @@ fn every_key_round_trips() {
         azimuth_term: AzimuthTerm::Eq3,
         rho_d: 0.1 + 0.2,
         rho_v: 1e-300,
+        spectral: None,
     };
     let text = material_to_toml(&spec);
     assert_eq!(parse(&text).unwrap(), spec, "{text}");

@@ -72,6 +72,8 @@ pub enum LegendAt {
     UpperRight,
     /// Lower left corner.
     LowerLeft,
+    /// Right edge, half way up.
+    MiddleRight,
 }
 
 /// One chart.
@@ -89,6 +91,9 @@ pub struct Panel {
     pub y_range: (f64, f64),
     /// y data are log10 of the quantity; ticks are labelled as powers of ten.
     pub log_y: bool,
+    /// A logarithmic x axis (data and range as they are, > 0), e.g. wavelength; labels at 1, 2
+    /// and 5 times the powers of ten.
+    pub log_x: bool,
     /// Approximate number of x tick labels.
     pub x_ticks: usize,
     /// Approximate number of y tick labels.
@@ -148,14 +153,72 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, p: &Panel) -> P
 where
     DB::ErrorType: 'static,
 {
-    let mut chart = ChartBuilder::on(area)
+    let mut builder = ChartBuilder::on(area);
+    builder
         .caption(&p.title, (FAMILY, 24))
         .margin(14)
         .margin_right(28)
         .x_label_area_size(62)
-        .y_label_area_size(if p.log_y { 92 } else { 82 })
-        .build_cartesian_2d(p.x_range.0..p.x_range.1, p.y_range.0..p.y_range.1)?;
+        .y_label_area_size(if p.log_y { 92 } else { 82 });
+    let (x, y) = (p.x_range.0..p.x_range.1, p.y_range.0..p.y_range.1);
+    if p.log_x {
+        draw_chart(builder.build_cartesian_2d(LogAxis(x), y)?, p)
+    } else {
+        draw_chart(builder.build_cartesian_2d(x, y)?, p)
+    }
+}
 
+/// A logarithmic axis with labels at 1, 2 and 5 times the powers of ten and light grid lines at
+/// every integer multiple, over the whole range (plotters' own log axis starts its ticks at the
+/// first power of ten inside the range, leaving e.g. 0.4–1 µm bare).
+struct LogAxis(std::ops::Range<f64>);
+
+impl Ranged for LogAxis {
+    type FormatOption = plotters::coord::ranged1d::DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        let (lo, hi) = (self.0.start.ln(), self.0.end.ln());
+        let t = (value.ln() - lo) / (hi - lo);
+        limit.0 + (t * f64::from(limit.1 - limit.0)).round() as i32
+    }
+
+    fn key_points<H: plotters::coord::ranged1d::KeyPointHint>(&self, hint: H) -> Vec<f64> {
+        let mantissas: &[f64] = if hint.weight().allow_light_points() {
+            &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+        } else {
+            &[1.0, 2.0, 5.0]
+        };
+        let (lo, hi) = (self.0.start, self.0.end);
+        let mut out = Vec::new();
+        for d in lo.log10().floor() as i32..=hi.log10().ceil() as i32 {
+            for m in mantissas {
+                let v = m * 10f64.powi(d);
+                if v >= lo * (1.0 - 1e-12) && v <= hi * (1.0 + 1e-12) {
+                    out.push(v);
+                }
+            }
+        }
+        if out.len() > hint.max_num_points() {
+            out.retain(|v| (v.log10() - v.log10().round()).abs() < 1e-9);
+        }
+        out
+    }
+
+    fn range(&self) -> std::ops::Range<f64> {
+        self.0.clone()
+    }
+}
+
+/// Everything but the axes' construction: the same for a linear and a logarithmic x axis.
+fn draw_chart<'a, DB: DrawingBackend + 'a, X>(
+    mut chart: ChartContext<'a, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>,
+    p: &Panel,
+) -> PlotResult
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
     let y_fmt = |v: &f64| {
         if p.log_y {
             let k = v.round();
@@ -274,6 +337,7 @@ where
             LegendAt::UpperLeft => SeriesLabelPosition::UpperLeft,
             LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
             LegendAt::LowerLeft => SeriesLabelPosition::LowerLeft,
+            LegendAt::MiddleRight => SeriesLabelPosition::MiddleRight,
         };
         chart
             .configure_series_labels()

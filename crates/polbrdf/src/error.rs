@@ -56,6 +56,18 @@ pub enum Error {
         /// The length of `theta_i`.
         expected: usize,
     },
+    /// A wavelength outside the data of a spectral index (never extrapolated).
+    #[error("wavelength {} µm{} is outside the data of `{material}` ({} – {} µm)", show(*wavelength_um), element(*position), show(range.0), show(range.1))]
+    WavelengthOutOfRange {
+        /// The material (or data set) whose index was asked for.
+        material: String,
+        /// The wavelength asked for (µm).
+        wavelength_um: f64,
+        /// The range of the data (µm).
+        range: (f64, f64),
+        /// Its position in a batch, when it came from one.
+        position: Option<usize>,
+    },
     /// A name was given that is not a known preset material.
     #[error("unknown material preset `{name}` (known: {known})")]
     UnknownPreset {
@@ -96,6 +108,13 @@ impl AngleProblem {
 
 /// A value as a message shows it: plainly (`200`, `-1.5`) in the ordinary range, in exponent
 /// form (`1e300`, `1e-200`) beyond it, so an absurd input does not print 300 digits.
+/// " (element i)" for a position in a batch, else nothing.
+fn element(position: Option<usize>) -> String {
+    position
+        .map(|i| format!(" (element {i})"))
+        .unwrap_or_default()
+}
+
 fn show(v: f64) -> String {
     if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
         format!("{v}")

@@ -42,8 +42,8 @@ pub mod numeric;
 pub mod optics;
 
 pub use analysis::{
-    directional_hemispherical, physical_validity, Albedo, CheckGrid, Contrast, ContrastSample,
-    Illumination, RankOptions, Ranking, ValidityReport, ViewGrid,
+    directional_hemispherical, physical_validity, Albedo, Band, CheckGrid, Contrast,
+    ContrastSample, Illumination, RankOptions, Ranking, Spectrum, ValidityReport, ViewGrid,
 };
 pub use engine::batch;
 pub use engine::{Engine, IndexColumns};

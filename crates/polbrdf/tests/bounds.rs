@@ -119,6 +119,7 @@ fn fuzzer_regression_subnormal_surface_term_keeps_dop_at_most_one() {
         azimuth_term: polbrdf::AzimuthTerm::None,
         rho_d: 0.0,
         rho_v: 0.0,
+        spectral: None,
     };
     let g = Geometry::new(
         2.18446115236903e-309,

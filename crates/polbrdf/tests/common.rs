@@ -62,6 +62,7 @@ pub fn spec_of(inp: &Value) -> MaterialSpec {
         },
         rho_d: f(&inp["rho_D"]),
         rho_v: f(&inp["rho_V"]),
+        spectral: None,
     }
 }
 

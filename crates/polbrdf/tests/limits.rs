@@ -288,6 +288,7 @@ pub(crate) mod reference {
                 },
                 rho_d: self.rho_d,
                 rho_v: self.rho_v,
+                spectral: None,
             }
         }
 

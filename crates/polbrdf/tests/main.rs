@@ -8,4 +8,5 @@ mod golden;
 mod kernel;
 mod limits;
 mod properties;
+mod spectral;
 mod vectors;

@@ -267,20 +267,37 @@ pub struct ViewSample {
 /// Evaluates one material over the grid (through the engine, in parallel): the hemispherical
 /// map of its BRDF and reflected Stokes vector.
 pub fn hemisphere(material: &Material, light: &Illumination, grid: &ViewGrid) -> Vec<ViewSample> {
+    hemisphere_mean(&[(1.0, material.clone())], light, grid)
+}
+
+/// As [`hemisphere`], for the weighted sum over spectral nodes `(weight, material)` (the
+/// weights of a band mean): BRDF and Stokes vectors are summed, never DoLPs.
+pub fn hemisphere_mean(
+    nodes: &[(f64, Material)],
+    light: &Illumination,
+    grid: &ViewGrid,
+) -> Vec<ViewSample> {
     let dirs: Vec<(f64, f64)> = (0..grid.len()).map(|i| grid.direction(i)).collect();
     let geoms: Vec<Geometry> = dirs.iter().map(|&(t, p)| light.geometry(t, p)).collect();
-    let f = Engine::new(material)
-        .pbrdf_of(&geoms)
-        .expect("no per-element index");
-    dirs.iter()
-        .zip(&f)
-        .map(|(&(theta_r, phi_r), f)| ViewSample {
+    let mut out: Vec<ViewSample> = dirs
+        .iter()
+        .map(|&(theta_r, phi_r)| ViewSample {
             theta_r,
             phi_r,
-            brdf: f.m00(),
-            stokes: f.apply(&light.stokes),
+            brdf: 0.0,
+            stokes: Stokes([0.0; 4]),
         })
-        .collect()
+        .collect();
+    for (w, material) in nodes {
+        let f = Engine::new(material)
+            .pbrdf_of(&geoms)
+            .expect("no per-element index");
+        for (o, f) in out.iter_mut().zip(&f) {
+            o.brdf += w * f.m00();
+            o.stokes = o.stokes.combine(1.0, &f.apply(&light.stokes), *w);
+        }
+    }
+    out
 }
 
 /// Target and background seen from one direction.
@@ -421,15 +438,16 @@ impl Default for RankOptions {
     }
 }
 
-/// Target and background under one illumination.
-#[derive(Debug, Clone, Copy)]
-pub struct Contrast<'a> {
-    /// The target material.
-    pub target: &'a Material,
-    /// The background material.
-    pub background: &'a Material,
-    /// The illumination of both.
-    pub light: Illumination,
+/// Target and background under one illumination, at one wavelength or over a band: the
+/// reflected Stokes vectors are the weighted sums over spectral nodes
+/// `S = Σ w_j·F_j·S_in` (one node of weight 1 for a single wavelength; a band's normalized
+/// quadrature weights otherwise, `crate::analysis::spectral`), so every derived quantity comes
+/// from band-integrated Stokes vectors.
+#[derive(Debug, Clone)]
+pub struct Contrast {
+    /// `(weight, target, background)` per spectral node.
+    nodes: Vec<(f64, Material, Material)>,
+    light: Illumination,
 }
 
 /// [`ContrastSample`]s at every node of a [`ViewGrid`], zenith-major.
@@ -441,14 +459,43 @@ pub struct ContrastMap {
     pub samples: Vec<ContrastSample>,
 }
 
-impl<'a> Contrast<'a> {
-    /// Target, background and illumination.
-    pub fn new(target: &'a Material, background: &'a Material, light: Illumination) -> Self {
+impl Contrast {
+    /// Target, background and illumination, at one wavelength (the materials as given).
+    pub fn new(target: &Material, background: &Material, light: Illumination) -> Self {
         Self {
-            target,
-            background,
+            nodes: vec![(1.0, target.clone(), background.clone())],
             light,
         }
+    }
+
+    /// Over spectral nodes `(weight, target, background)` (the weights of a mean, summing to
+    /// 1: `Spectrum::mean_nodes`).
+    ///
+    /// # Panics
+    /// When `nodes` is empty.
+    pub fn spectral(nodes: Vec<(f64, Material, Material)>, light: Illumination) -> Self {
+        assert!(!nodes.is_empty(), "at least one spectral node");
+        Self { nodes, light }
+    }
+
+    /// The illumination.
+    pub fn light(&self) -> Illumination {
+        self.light
+    }
+
+    /// The target (at the first spectral node).
+    pub fn target(&self) -> &Material {
+        &self.nodes[0].1
+    }
+
+    /// The background (at the first spectral node).
+    pub fn background(&self) -> &Material {
+        &self.nodes[0].2
+    }
+
+    /// The spectral nodes `(weight, target, background)`.
+    pub fn nodes(&self) -> &[(f64, Material, Material)] {
+        &self.nodes
     }
 
     /// Both materials seen from `(theta_r, phi_r)` (rad; θr clamped into `[0, π/2]`), by the
@@ -456,11 +503,16 @@ impl<'a> Contrast<'a> {
     pub fn at(&self, theta_r: f64, phi_r: f64) -> ContrastSample {
         let g = self.light.geometry(theta_r, phi_r);
         let s = self.light.stokes;
+        let (mut t, mut b) = (Stokes([0.0; 4]), Stokes([0.0; 4]));
+        for (w, target, background) in &self.nodes {
+            t = t.combine(1.0, &Kernel::new(target).pbrdf(&g).apply(&s), *w);
+            b = b.combine(1.0, &Kernel::new(background).pbrdf(&g).apply(&s), *w);
+        }
         ContrastSample {
             theta_r: g.theta_r(),
             phi_r,
-            target: Kernel::new(self.target).pbrdf(&g).apply(&s),
-            background: Kernel::new(self.background).pbrdf(&g).apply(&s),
+            target: t,
+            background: b,
         }
     }
 
@@ -471,17 +523,23 @@ impl<'a> Contrast<'a> {
             .iter()
             .map(|&(t, p)| self.light.geometry(t, p))
             .collect();
-        let ft = Engine::new(self.target).pbrdf_of(&geoms).expect("no index");
-        let fb = Engine::new(self.background)
-            .pbrdf_of(&geoms)
-            .expect("no index");
         let s = self.light.stokes;
+        let zero = Stokes([0.0; 4]);
+        let (mut t, mut b) = (vec![zero; dirs.len()], vec![zero; dirs.len()]);
+        for (w, target, background) in &self.nodes {
+            let ft = Engine::new(target).pbrdf_of(&geoms).expect("no index");
+            let fb = Engine::new(background).pbrdf_of(&geoms).expect("no index");
+            for k in 0..dirs.len() {
+                t[k] = t[k].combine(1.0, &ft[k].apply(&s), *w);
+                b[k] = b[k].combine(1.0, &fb[k].apply(&s), *w);
+            }
+        }
         (0..dirs.len())
             .map(|k| ContrastSample {
                 theta_r: geoms[k].theta_r(),
                 phi_r: dirs[k].1,
-                target: ft[k].apply(&s),
-                background: fb[k].apply(&s),
+                target: t[k],
+                background: b[k],
             })
             .collect()
     }

@@ -48,7 +48,8 @@ const STREAM_MIN: usize = 1 << 16;
 #[derive(Debug, Clone)]
 pub struct Engine<'a> {
     kernel: Kernel<'a>,
-    index_len: Option<usize>,
+    /// The length of a per-element index or of the wavelengths, and its name for messages.
+    index_len: Option<(usize, &'static str)>,
 }
 
 impl<'a> Engine<'a> {
@@ -64,9 +65,24 @@ impl<'a> Engine<'a> {
     /// long as `index`).
     pub fn with_index(self, index: IndexColumns<'a>) -> Self {
         Self {
-            index_len: Some(index.len()),
+            index_len: Some((index.len(), "n")),
             kernel: self.kernel.with_index(index),
         }
+    }
+
+    /// Element `j` of every batch evaluated with the material's spectral index at
+    /// `wavelengths_um[j]` (µm; the batch must be as long), looked up block by block inside the
+    /// parallel kernel — how one call covers wavelengths × geometries (docs/model.md §15). A
+    /// constant index does not depend on the wavelengths.
+    ///
+    /// # Errors
+    /// [`crate::Error::WavelengthOutOfRange`] with the position of the first wavelength outside
+    /// the data.
+    pub fn with_wavelengths(self, wavelengths_um: &'a [f64]) -> Result<Self> {
+        Ok(Self {
+            index_len: Some((wavelengths_um.len(), "wavelength_um")),
+            kernel: self.kernel.with_wavelengths(wavelengths_um)?,
+        })
     }
 
     /// The serial kernel.
@@ -76,7 +92,7 @@ impl<'a> Engine<'a> {
 
     fn check(&self, n: usize) -> Result<()> {
         match self.index_len {
-            Some(len) => check_len("n", len, n),
+            Some((len, name)) => check_len(name, len, n),
             None => Ok(()),
         }
     }

@@ -11,6 +11,7 @@ use crate::error::{Error, Result, MAX_INDEX};
 use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
 use crate::model::{Evaluation, Material, ModelParams};
 use crate::numeric::math::{FastPortable, Math};
+use crate::optics::dispersion::SpectralIndex;
 use crate::optics::fresnel::{index_squared, RefractiveIndex};
 use crate::optics::mueller::Mueller;
 use crate::optics::stokes::Stokes;
@@ -83,6 +84,82 @@ enum IndexSource<'a> {
     Constant { n2r: f64, n2i: f64, ill: bool },
     /// One per element.
     PerElement(IndexColumns<'a>),
+    /// A spectral index at one wavelength (µm) per element, looked up block by block through a
+    /// [`SpectralCache`] (validated in range by [`Kernel::with_wavelengths`]).
+    Spectral {
+        index: &'a SpectralIndex,
+        wavelengths: &'a [f64],
+    },
+}
+
+/// The per-job cache of a spectral index: `N²` and the domain flag of the wavelengths seen, in
+/// an open-addressing table keyed on the wavelength's bits (allocated on first use, so jobs
+/// without a spectral index pay nothing). Up to [`SpectralCache::KEYS`] distinct wavelengths
+/// per job stay cached — a repeated wavelength, in runs or cycling, costs a comparison or two
+/// instead of a search of the data; beyond that the table starts over.
+struct SpectralCache {
+    slots: Vec<(f64, f64, f64, bool)>,
+    used: usize,
+}
+
+impl SpectralCache {
+    const SLOTS: usize = 256;
+    const KEYS: usize = Self::SLOTS / 2;
+
+    fn new() -> Self {
+        Self {
+            slots: Vec::new(),
+            used: 0,
+        }
+    }
+
+    /// An empty table (NaN never equals a key: every slot starts empty).
+    #[cold]
+    fn reset(&mut self) {
+        self.slots.clear();
+        self.slots.resize(Self::SLOTS, (f64::NAN, 0.0, 0.0, true));
+        self.used = 0;
+    }
+
+    /// `(n2r, n2i, ill)` at `lambda_um`; NaN and ill where the data give no valid index there
+    /// (the element then takes the one-geometry path, which reports NaN).
+    #[inline(always)]
+    fn get(&mut self, index: &SpectralIndex, lambda_um: f64) -> (f64, f64, bool) {
+        if self.slots.is_empty() || self.used >= Self::KEYS {
+            self.reset();
+        }
+        // Fibonacci hashing of the bits into 8 bits, then linear probing.
+        let mut slot = (lambda_um.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 56) as usize;
+        loop {
+            let (key, a, b, ill) = self.slots[slot];
+            if key == lambda_um {
+                return (a, b, ill);
+            }
+            if key.is_nan() {
+                break;
+            }
+            slot = (slot + 1) % Self::SLOTS;
+        }
+        self.insert(index, lambda_um, slot)
+    }
+
+    /// A wavelength not in the table: looked up in the data and stored in `slot`.
+    #[cold]
+    #[inline(never)]
+    fn insert(&mut self, index: &SpectralIndex, lambda_um: f64, slot: usize) -> (f64, f64, bool) {
+        let (a, b, ill) = match index.at(lambda_um) {
+            Ok(n) => {
+                let (a, b) = n.squared();
+                (a, b, index_ill(a, b))
+            }
+            Err(_) => (f64::NAN, f64::NAN, true),
+        };
+        if !lambda_um.is_nan() {
+            self.slots[slot] = (lambda_um, a, b, ill);
+            self.used += 1;
+        }
+        (a, b, ill)
+    }
 }
 
 /// Whether an index is outside the kernel's accurate domain: the Fresnel amplitudes lose
@@ -159,6 +236,32 @@ impl<'a> Kernel<'a> {
     pub fn with_index(mut self, index: IndexColumns<'a>) -> Self {
         self.index = IndexSource::PerElement(index);
         self
+    }
+
+    /// Evaluate element `j` with the material's spectral index at `wavelengths_um[j]` (µm);
+    /// a material with a constant index is unchanged (the wavelengths play no part).
+    ///
+    /// # Errors
+    /// [`Error::WavelengthOutOfRange`] with the position of the first wavelength outside the
+    /// index's data (or not finite).
+    pub fn with_wavelengths(mut self, wavelengths_um: &'a [f64]) -> Result<Self> {
+        if let Some(s) = &self.material.spec().spectral {
+            let index: &'a SpectralIndex = &s.index;
+            let (lo, hi) = index.range();
+            if let Some(i) = wavelengths_um.iter().position(|l| !(*l >= lo && *l <= hi)) {
+                return Err(Error::WavelengthOutOfRange {
+                    material: index.name.clone(),
+                    wavelength_um: wavelengths_um[i],
+                    range: (lo, hi),
+                    position: Some(i),
+                });
+            }
+            self.index = IndexSource::Spectral {
+                index,
+                wavelengths: wavelengths_um,
+            };
+        }
+        Ok(self)
     }
 
     /// With `on`, [`Kernel::mueller_into`] writes its results with non-temporal stores where the
@@ -332,6 +435,17 @@ impl<'a> Kernel<'a> {
                 );
                 IndexSource::PerElement(cols.slice(start, len))
             }
+            IndexSource::Spectral { index, wavelengths } => {
+                assert!(
+                    start + len <= wavelengths.len(),
+                    "range {start}..{start}+{len} beyond {} wavelengths",
+                    wavelengths.len()
+                );
+                IndexSource::Spectral {
+                    index,
+                    wavelengths: &wavelengths[start..start + len],
+                }
+            }
             c => c,
         }
     }
@@ -398,19 +512,44 @@ impl<'a> Kernel<'a> {
 }
 
 impl IndexSource<'_> {
-    /// The index of element `i`.
-    fn get(&self, i: usize, material: &Material) -> RefractiveIndex {
+    /// The index of element `i`; `None` where a spectral index's data give no valid one.
+    fn get(&self, i: usize, material: &Material) -> Option<RefractiveIndex> {
         match self {
-            IndexSource::Constant { .. } => material.index(),
-            IndexSource::PerElement(cols) => cols.get(i),
+            IndexSource::Constant { .. } => Some(material.index()),
+            IndexSource::PerElement(cols) => Some(cols.get(i)),
+            IndexSource::Spectral { index, wavelengths } => index.at(wavelengths[i]).ok(),
         }
     }
 
     /// `N²` and the domain flag of elements `start .. start + len` (the rest of the block
     /// repeats element `start`).
     #[inline(always)]
-    fn lanes<const N: usize>(&self, start: usize, len: usize) -> IndexLanes<N> {
+    fn lanes<const N: usize>(
+        &self,
+        start: usize,
+        len: usize,
+        cache: &mut SpectralCache,
+    ) -> IndexLanes<N> {
         match *self {
+            IndexSource::Spectral { index, wavelengths } => {
+                let mut b = IndexLanes {
+                    n2r: [0.0; N],
+                    n2i: [0.0; N],
+                    index_ill: [false; N],
+                };
+                let mut last = f64::NAN;
+                let mut value = (0.0, 0.0, true);
+                for j in 0..N {
+                    let l = wavelengths[start + if j < len { j } else { 0 }];
+                    // Runs of one wavelength (wavelength-major) skip the table.
+                    if l != last {
+                        value = cache.get(index, l);
+                        last = l;
+                    }
+                    (b.n2r[j], b.n2i[j], b.index_ill[j]) = value;
+                }
+                b
+            }
             IndexSource::Constant { n2r, n2i, ill } => IndexLanes {
                 n2r: [n2r; N],
                 n2i: [n2i; N],
@@ -552,10 +691,12 @@ impl<S: Source> Blocks for Computed<S> {
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
         let [ti, pi, tr, pr] = self.0.get(i);
-        k.material.evaluate_with_index(
-            &Geometry::new_unchecked(ti + 0.0, pi, tr + 0.0, pr),
-            index.get(i, k.material),
-        )
+        index
+            .get(i, k.material)
+            .map_or_else(Evaluation::undefined, |n| {
+                k.material
+                    .evaluate_with_index(&Geometry::new_unchecked(ti + 0.0, pi, tr + 0.0, pr), n)
+            })
     }
 }
 
@@ -576,8 +717,11 @@ impl Blocks for Variables<'_> {
     }
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
-        k.material
-            .evaluate_angles_with_index(&self.0[i], index.get(i, k.material))
+        index
+            .get(i, k.material)
+            .map_or_else(Evaluation::undefined, |n| {
+                k.material.evaluate_angles_with_index(&self.0[i], n)
+            })
     }
 }
 
@@ -702,10 +846,12 @@ impl Blocks for PreparedRange<'_> {
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
         let g = &self.p.blocks[self.first + i / BLOCK];
         let a = |c: usize| g.angles[c][i % BLOCK];
-        k.material.evaluate_with_index(
-            &Geometry::new_unchecked(a(0), a(1), a(2), a(3)),
-            index.get(i, k.material),
-        )
+        index
+            .get(i, k.material)
+            .map_or_else(Evaluation::undefined, |n| {
+                k.material
+                    .evaluate_with_index(&Geometry::new_unchecked(a(0), a(1), a(2), a(3)), n)
+            })
     }
 }
 
@@ -802,10 +948,11 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
         let phi_n = k.params.uses_phi_n();
         let mut rows = [[0.0; N]; 16];
         let mut staged = [[0.0; 16]; N];
+        let mut cache = SpectralCache::new();
         for (blk, dst) in self.out.chunks_mut(N).enumerate() {
             let start = blk * N;
             let geo = self.src.geometry::<M, N, true>(start, dst.len(), phi_n);
-            let idx = self.index.lanes::<N>(start, dst.len());
+            let idx = self.index.lanes::<N>(start, dst.len(), &mut cache);
             let mut front = block::front::<M, N>(&k.params, &geo, &idx);
             block::mueller::<M, N>(&mut front, &mut rows);
             // Transpose into a row-major staging block (in L1), then copy out contiguously.
@@ -848,10 +995,11 @@ impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_
         let phi_n = k.params.uses_phi_n();
         let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
         let n = self.brdf.len();
+        let mut cache = SpectralCache::new();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
             let geo = self.src.geometry::<M, N, AOLP>(start, len, phi_n);
-            let idx = self.index.lanes::<N>(start, len);
+            let idx = self.index.lanes::<N>(start, len, &mut cache);
             let mut front = block::front::<M, N>(&k.params, &geo, &idx);
             block::brdf_dolp::<M, N, AOLP>(&mut front, &mut lanes);
             self.brdf[start..start + len].copy_from_slice(&lanes[0][..len]);
@@ -935,7 +1083,7 @@ mod tests {
                     b.tr[j] = rng.range(0.0, 89.9f64.to_radians());
                     b.pr[j] = rng.range(0.0, 2.0 * std::f64::consts::PI);
                 }
-                let idx = k.index.lanes::<BLOCK>(0, BLOCK);
+                let idx = k.index.lanes::<BLOCK>(0, BLOCK, &mut SpectralCache::new());
                 let geo = block::geometry::<FastUnfused, BLOCK, true>(&b, false);
                 let mut rows = [[0.0; BLOCK]; 16];
                 let mut f = block::front::<FastUnfused, BLOCK>(&k.params, &geo, &idx);

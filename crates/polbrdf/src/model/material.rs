@@ -69,6 +69,8 @@ pub struct Material {
     spec: MaterialSpec,
     index: RefractiveIndex,
     params: ModelParams,
+    /// For a material built from a spectral spec at a wavelength: the wavelength (µm).
+    wavelength_um: Option<f64>,
 }
 
 /// The terms of one surface evaluation, for tracing a number back to its equation.
@@ -108,6 +110,17 @@ impl Evaluation {
         }
     }
 
+    /// The result where the material has no valid index (a spectral index whose data give
+    /// none at the wavelength asked for): NaN everywhere.
+    pub fn undefined() -> Self {
+        Self {
+            pbrdf: Mueller([[f64::NAN; 4]; 4]),
+            surface: f64::NAN,
+            volume: f64::NAN,
+            terms: None,
+        }
+    }
+
     /// Scalar BRDF `f = F00 = f_s + f_v` (eqs. 1, 6), sr⁻¹.
     pub fn brdf(&self) -> f64 {
         self.pbrdf.m00()
@@ -134,7 +147,41 @@ impl Material {
             spec,
             index,
             params,
+            wavelength_um: None,
         }
+    }
+
+    /// Records the spectral source and the wavelength a material was built at
+    /// ([`MaterialSpec::build_at`]).
+    pub(crate) fn set_origin(
+        &mut self,
+        spectral: Option<crate::model::spec::SpectralSource>,
+        lambda_um: Option<f64>,
+    ) {
+        if spectral.is_some() {
+            self.spec.spectral = spectral;
+            self.wavelength_um = lambda_um;
+        }
+    }
+
+    /// The wavelength (µm) this material was built at, for one with a spectral index
+    /// ([`MaterialSpec::build_at`]); `None` for a constant index.
+    pub fn wavelength_um(&self) -> Option<f64> {
+        self.wavelength_um
+    }
+
+    /// The same material at another wavelength: its spectral index there (a constant index is
+    /// unchanged).
+    ///
+    /// # Errors
+    /// [`crate::Error::WavelengthOutOfRange`] outside the data.
+    pub fn at_wavelength(&self, lambda_um: f64) -> crate::Result<Material> {
+        let index = self.spec.index_at(lambda_um)?;
+        let mut m = self.with_index(index);
+        if self.spec.spectral.is_some() {
+            m.wavelength_um = Some(lambda_um);
+        }
+        Ok(m)
     }
 
     /// The spec this material was built from.
@@ -178,8 +225,10 @@ impl Material {
     pub fn with_index(&self, index: RefractiveIndex) -> Material {
         let mut m = self.clone();
         m.index = index;
-        m.spec.n = index.n();
-        m.spec.k = index.k();
+        if m.spec.spectral.is_none() {
+            m.spec.n = index.n();
+            m.spec.k = index.k();
+        }
         m
     }
 

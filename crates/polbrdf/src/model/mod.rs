@@ -14,5 +14,5 @@ pub mod terms;
 pub use distribution::Distribution;
 pub use material::{Evaluation, Material, ModelParams, SurfaceTerms};
 pub use shadowing::{AzimuthTerm, Shadowing};
-pub use spec::{KeyValue, MaterialSpec, KEYS};
+pub use spec::{KeyValue, MaterialSpec, SpectralSource, KEYS};
 pub use terms::Form;

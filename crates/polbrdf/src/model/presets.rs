@@ -52,29 +52,38 @@ pub fn all() -> Vec<Preset> {
         },
         Preset {
             name: "aluminium",
-            description: "aluminium at 632.8 nm: N = 1.37 + 7.62i (Rakić 1998), σ = 10°",
-            spec: spec("aluminium", 1.37, 7.62, 10.0, 0.0, 0.0),
+            description:
+                "aluminium at 632.8 nm: N = 1.340 + 7.300i (Rakić et al. 1998, Lorentz–Drude; \
+                          library:Al/Rakic-LD), σ = 10°",
+            spec: spec("aluminium", 1.340, 7.300, 10.0, 0.0, 0.0),
         },
         Preset {
             name: "gold",
-            description: "gold at 632.8 nm: N = 0.181 + 3.07i (Johnson & Christy 1972), σ = 10°",
-            spec: spec("gold", 0.181, 3.07, 10.0, 0.0, 0.0),
+            description:
+                "gold at 632.8 nm: N = 0.1838 + 3.431i (Johnson & Christy 1972, interpolated; \
+                          library:Au/Johnson), σ = 10°",
+            spec: spec("gold", 0.1838, 3.431, 10.0, 0.0, 0.0),
         },
         Preset {
             name: "silver",
-            description: "silver at 632.8 nm: N = 0.0562 + 4.28i (Johnson & Christy 1972), σ = 10°",
-            spec: spec("silver", 0.0562, 4.28, 10.0, 0.0, 0.0),
+            description:
+                "silver at 632.8 nm: N = 0.05625 + 4.276i (Johnson & Christy 1972, interpolated; \
+                          library:Ag/Johnson), σ = 10°",
+            spec: spec("silver", 0.05625, 4.276, 10.0, 0.0, 0.0),
         },
         Preset {
             name: "copper",
-            description: "copper at 632.8 nm: N = 0.270 + 3.41i (Johnson & Christy 1972), σ = 10°",
-            spec: spec("copper", 0.270, 3.41, 10.0, 0.0, 0.0),
+            description:
+                "copper at 632.8 nm: N = 0.2700 + 3.408i (Johnson & Christy 1972, interpolated; \
+                          library:Cu/Johnson), σ = 10°",
+            spec: spec("copper", 0.2700, 3.408, 10.0, 0.0, 0.0),
         },
         Preset {
             name: "iron",
-            description: "iron / bare steel at 632.8 nm: N = 2.91 + 3.08i (Johnson & Christy \
-                          1974), σ = 10°",
-            spec: spec("iron", 2.91, 3.08, 10.0, 0.0, 0.0),
+            description:
+                "iron / bare steel at 632.8 nm: N = 2.895 + 3.069i (Johnson & Christy 1974, \
+                          interpolated; library:Fe/Johnson), σ = 10°",
+            spec: spec("iron", 2.895, 3.069, 10.0, 0.0, 0.0),
         },
     ]
 }

@@ -6,7 +6,9 @@ use crate::model::distribution::Distribution;
 use crate::model::material::{Material, ModelParams};
 use crate::model::shadowing::{AzimuthTerm, Shadowing};
 use crate::model::terms::Form;
+use crate::optics::dispersion::SpectralIndex;
 use crate::optics::fresnel::RefractiveIndex;
+use std::sync::Arc;
 
 /// The keys of a material file, in the order files are written (the one list every reader and
 /// writer of materials uses: the TOML reader and writer, the Python `Material`; the fit's
@@ -16,6 +18,7 @@ pub const KEYS: &[&str] = &[
     "name",
     "n",
     "k",
+    "index",
     "sigma_deg",
     "b",
     "a",
@@ -58,6 +61,18 @@ pub struct MaterialSpec {
     pub rho_d: f64,
     /// Non-Lambertian volume constant ρ_V of eq. 1, sr⁻¹ (default 0).
     pub rho_v: f64,
+    /// A spectral index `N(λ)` instead of the constant `n`, `k` (key `index`): then `n` and `k`
+    /// are not used, and the material is built at a wavelength ([`MaterialSpec::build_at`]).
+    pub spectral: Option<SpectralSource>,
+}
+
+/// A spectral index and where it came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpectralSource {
+    /// As written in the material file: `library:<id>` or a path.
+    pub source: String,
+    /// The data.
+    pub index: Arc<SpectralIndex>,
 }
 
 impl MaterialSpec {
@@ -77,7 +92,84 @@ impl MaterialSpec {
             azimuth_term: AzimuthTerm::None,
             rho_d: 0.0,
             rho_v: 0.0,
+            spectral: None,
         }
+    }
+
+    /// True when the index is spectral (`index = …`).
+    pub fn is_spectral(&self) -> bool {
+        self.spectral.is_some()
+    }
+
+    /// The complex index at `lambda_um` (µm): the spectral index there, or the constant one
+    /// (whatever λ).
+    ///
+    /// # Errors
+    /// [`Error::WavelengthOutOfRange`] outside a spectral index's data; [`Error::InvalidParameter`]
+    /// for an invalid `n`, `k` or λ.
+    pub fn index_at(&self, lambda_um: f64) -> Result<RefractiveIndex> {
+        crate::error::positive("wavelength_um", lambda_um)?;
+        match &self.spectral {
+            Some(s) => s.index.at(lambda_um),
+            None => RefractiveIndex::new(self.n, self.k),
+        }
+    }
+
+    /// The index at each wavelength of `wavelengths_um` (µm) as two columns `(n, k)` for the
+    /// engine's per-element index ([`crate::engine::IndexColumns`]). The same wavelength is
+    /// looked up once: a direct-mapped cache of recent wavelengths makes repeated ones (a
+    /// broadcast `materials × wavelengths × geometries` grid) cost a comparison instead of a
+    /// search of the data.
+    ///
+    /// # Errors
+    /// `(position, error)` of the first wavelength that [`MaterialSpec::index_at`] refuses.
+    pub fn index_columns(
+        &self,
+        wavelengths_um: &[f64],
+    ) -> std::result::Result<(Vec<f64>, Vec<f64>), (usize, Error)> {
+        const SLOTS: usize = 64;
+        let mut cache = [(f64::NAN, 0.0, 0.0); SLOTS];
+        let (mut n, mut k) = (
+            Vec::with_capacity(wavelengths_um.len()),
+            Vec::with_capacity(wavelengths_um.len()),
+        );
+        for (i, &l) in wavelengths_um.iter().enumerate() {
+            // Fibonacci hashing of the bits; NaN never equals a key, so it is always looked up
+            // (and refused).
+            let slot = (l.to_bits().wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 58) as usize;
+            let (key, cn, ck) = cache[slot];
+            if key == l {
+                n.push(cn);
+                k.push(ck);
+                continue;
+            }
+            let index = self.index_at(l).map_err(|e| (i, e))?;
+            cache[slot] = (l, index.n(), index.k());
+            n.push(index.n());
+            k.push(index.k());
+        }
+        Ok((n, k))
+    }
+
+    /// The wavelength range (µm) of a spectral index's data, `None` for a constant index.
+    pub fn wavelength_range(&self) -> Option<(f64, f64)> {
+        self.spectral.as_ref().map(|s| s.index.range())
+    }
+
+    /// Validates every key and builds the material at wavelength `lambda_um` (µm): with the
+    /// spectral index at λ, or the constant index (λ then plays no part).
+    ///
+    /// # Errors
+    /// As [`MaterialSpec::build`], and [`Error::WavelengthOutOfRange`] outside the data.
+    pub fn build_at(&self, lambda_um: f64) -> Result<Material> {
+        let index = self.index_at(lambda_um)?;
+        let mut constant = self.clone();
+        constant.n = index.n();
+        constant.k = index.k();
+        let spectral = constant.spectral.take();
+        let mut m = constant.build()?;
+        m.set_origin(spectral, Some(lambda_um));
+        Ok(m)
     }
 
     /// Validates every key and derives the model's quantities.
@@ -86,6 +178,18 @@ impl MaterialSpec {
     /// [`Error::InvalidParameter`] naming the key and its value, or
     /// [`Error::InconsistentParameters`] when `sigma_deg` and `b` are both or neither given.
     pub fn build(&self) -> Result<Material> {
+        if let Some(s) = &self.spectral {
+            let (lo, hi) = s.index.range();
+            return Err(Error::InconsistentParameters(format!(
+                "the material{} has a spectral index (`index = \"{}\"`, {lo}–{hi} µm): give a \
+                 wavelength",
+                self.name
+                    .as_deref()
+                    .map(|n| format!(" `{n}`"))
+                    .unwrap_or_default(),
+                s.source
+            )));
+        }
         let index = RefractiveIndex::new(self.n, self.k)?;
         let b = match (self.sigma_deg, self.b) {
             (Some(s), None) => {
@@ -164,13 +268,14 @@ impl KeyValue {
 
 impl MaterialSpec {
     /// The value of key `key` ([`KEYS`]), `None` when it is an unset optional key (`name`,
-    /// `sigma_deg`, `b`, `a`) or not a key.
+    /// `sigma_deg`, `b`, `a`, `index`; `n` and `k` of a spectral material) or not a key.
     pub fn get(&self, key: &str) -> Option<KeyValue> {
         use KeyValue::{Bool, Number, Text};
         Some(match key {
             "name" => Text(self.name.clone()?),
-            "n" => Number(self.n),
-            "k" => Number(self.k),
+            "n" if self.spectral.is_none() => Number(self.n),
+            "k" if self.spectral.is_none() => Number(self.k),
+            "index" => Text(self.spectral.as_ref()?.source.clone()),
             "sigma_deg" => Number(self.sigma_deg?),
             "b" => Number(self.b?),
             "a" => Number(self.a?),
@@ -193,7 +298,9 @@ impl MaterialSpec {
     }
 
     /// Sets key `key` to `value`. The value is checked for its type and, for `form` and
-    /// `azimuth_term`, its spelling; the numbers are checked by [`MaterialSpec::build`].
+    /// `azimuth_term`, its spelling; the numbers are checked by [`MaterialSpec::build`]. The
+    /// key `index` names data to read, which the core does not do: set
+    /// [`MaterialSpec::spectral`] instead (`polbrdf-io` does when it reads a file).
     ///
     /// # Errors
     /// What is wrong, in words (the caller adds where: file, line, key): an unknown key, a value
@@ -213,6 +320,11 @@ impl MaterialSpec {
             ("azimuth_term", KeyValue::Text(t)) => self.azimuth_term = t.parse::<AzimuthTerm>()?,
             ("rho_d", KeyValue::Number(x)) => self.rho_d = *x,
             ("rho_v", KeyValue::Number(x)) => self.rho_v = *x,
+            ("index", KeyValue::Text(_)) => {
+                return Err(
+                    "`index` names data to read: set `spectral` (polbrdf-io reads it)".into(),
+                )
+            }
             (k, v) => {
                 return Err(match expected(k) {
                     Some(want) => format!("expected {want}, got {}", v.kind()),
@@ -228,7 +340,7 @@ impl MaterialSpec {
 /// `None` for an unknown key.
 pub fn expected(key: &str) -> Option<&'static str> {
     match key {
-        "name" | "form" | "azimuth_term" => Some("a string"),
+        "name" | "form" | "azimuth_term" | "index" => Some("a string"),
         "shadowing" => Some("true or false"),
         k if KEYS.contains(&k) => Some("a number"),
         _ => None,
