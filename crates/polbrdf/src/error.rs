@@ -88,6 +88,8 @@ pub enum AngleProblem {
     ZenithRange,
     /// A source at or below the horizon where one above it is needed.
     SourceBelowHorizon,
+    /// A view direction at or below the horizon where one above it is needed.
+    ViewBelowHorizon,
 }
 
 impl AngleProblem {
@@ -101,6 +103,9 @@ impl AngleProblem {
             }
             (AngleProblem::SourceBelowHorizon, _) => {
                 "the source must be above the horizon: 0 ≤ zenith angle < 90°"
+            }
+            (AngleProblem::ViewBelowHorizon, _) => {
+                "the view direction must be above the horizon: 0 ≤ zenith angle < 90°"
             }
         }
     }

@@ -161,6 +161,13 @@ fn hemisphere_maps_are_unchanged() {
     }
 }
 
+/// The albedo's surface quadrature was rebuilt after the golden values were computed (panel
+/// edges at total internal reflection and at the `eq3` factor's kink, a smoothstep map at every
+/// kink: `analysis::facets`, which agrees with itself refined 8× to 1e-9 on these cases). The
+/// old rule's error, measured against the new one, is at most 2.4e-6 (gold, θi = 80°), above
+/// its documented 1e-6.
+const ALBEDO_RULE_CHANGE: f64 = 2.5e-6;
+
 #[test]
 fn albedo_is_unchanged() {
     let g = golden();
@@ -169,7 +176,19 @@ fn albedo_is_unchanged() {
         for row in case["rows"].as_array().unwrap() {
             let a = directional_hemispherical(&m, f(&row["theta_i"]));
             let what = format!("{} at {}", case["name"], row["theta_i"]);
-            rel(&what, a.surface, f(&row["surface"]));
+            // The surface quadrature changed after these were computed (analysis::facets); the
+            // volume term did not. The paper form's integral diverges: reported as ∞ now.
+            if m.form() == Form::Paper {
+                assert_eq!(a.surface, f64::INFINITY, "{what}");
+                rel(&what, a.volume, f(&row["volume"]));
+                continue;
+            }
+            assert!(
+                (a.surface - f(&row["surface"])).abs() < ALBEDO_RULE_CHANGE,
+                "{what}: {} vs {}",
+                a.surface,
+                row["surface"]
+            );
             rel(&what, a.volume, f(&row["volume"]));
         }
     }
@@ -214,7 +233,12 @@ fn check_is_unchanged() {
         );
         assert_eq!(r.passes(), case["passes"].as_bool().unwrap(), "{name}");
         for (a, w) in r.albedo.iter().zip(case["albedo"].as_array().unwrap()) {
-            rel(name, a.surface, f(&w[1]));
+            // As in `albedo_is_unchanged`: the surface quadrature was rebuilt since.
+            if m.form() == Form::Paper {
+                assert_eq!(a.surface, f64::INFINITY, "{name}");
+            } else {
+                assert!((a.surface - f(&w[1])).abs() < ALBEDO_RULE_CHANGE, "{name}");
+            }
             rel(name, a.volume, f(&w[2]));
         }
     }

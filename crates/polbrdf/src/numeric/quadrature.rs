@@ -39,8 +39,20 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
 
 /// The 20-point rule, computed once.
 pub(crate) fn gl20() -> &'static (Vec<f64>, Vec<f64>) {
-    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
-    RULE.get_or_init(|| gauss_legendre(20))
+    gl(20)
+}
+
+/// The `n`-point rule (`1 ≤ n ≤ 32`), computed once per `n`.
+///
+/// # Panics
+/// For `n` outside `1..=32`.
+pub fn gl(n: usize) -> &'static (Vec<f64>, Vec<f64>) {
+    static RULES: [OnceLock<(Vec<f64>, Vec<f64>)>; 33] = [const { OnceLock::new() }; 33];
+    assert!(
+        (1..=32).contains(&n),
+        "Gauss–Legendre rules of 1 to 32 points"
+    );
+    RULES[n].get_or_init(|| gauss_legendre(n))
 }
 
 /// The nodes and weights of the composite 20-point rule on `panels` equal panels of
