@@ -14,6 +14,9 @@ Units
   (SCATMECH) Stokes basis, row-major: ``S_out = F @ S_in`` (eq. 12).
 - DoLP and DoP are dimensionless in [0, 1]; AoLP is in (−90°, 90°] (or radians), measured from
   the reflected beam's s axis toward its p axis.
+- Thermal emission: wavelengths in **µm**, temperatures in **K**, spectral radiance in
+  **W·m⁻²·sr⁻¹·µm⁻¹** (:func:`planck`, :func:`radiance` at one wavelength), band radiance in
+  **W·m⁻²·sr⁻¹** (:func:`radiance` over a band); emissivities are dimensionless.
 
 Example
 -------
@@ -50,16 +53,22 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
     ) from _e
 
 __all__ = [
+    "Emissivity",
     "Evaluation",
     "FitResult",
     "Material",
+    "Radiance",
     "__version__",
     "brdf",
+    "brightness_temperature",
     "dolp",
+    "emissivity",
     "evaluate",
     "fit",
     "index",
     "mueller",
+    "planck",
+    "radiance",
     "stokes_aolp",
     "stokes_dolp",
     "stokes_dop",
@@ -96,20 +105,21 @@ class Evaluation(NamedTuple):
     mueller: NDArray[np.float64] | None
 
 
-def _flatten(
-    material: Material,
-    angles: tuple[ArrayLike, ...],
-) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
-    """Broadcast the four angle arguments (and the wavelength, when given: a fifth); return the
-    shape and the flat C-contiguous float64 arrays (views when the input already is one,
-    copies otherwise)."""
+def _check_material(material: Material) -> None:
     if not isinstance(material, Material):
         raise TypeError(
             f"material must be a polbrdf.Material, not {type(material).__name__} "
             "(use polbrdf.Material.preset(name) or polbrdf.Material.from_toml(path))"
         )
+
+
+def _broadcast(
+    names: Sequence[str], values: tuple[ArrayLike, ...]
+) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
+    """Broadcast the arguments ``values`` (named ``names``); return the shape and the flat
+    C-contiguous float64 arrays (views when the input already is one, copies otherwise)."""
     arrays = []
-    for name, a in zip(_NAMES, angles):
+    for name, a in zip(names, values):
         arr = np.asarray(a)
         if arr.dtype.kind not in "biuf":
             raise TypeError(f"`{name}` must hold real numbers, got dtype {arr.dtype}")
@@ -117,11 +127,22 @@ def _flatten(
     try:
         b = np.broadcast_arrays(*arrays)
     except ValueError as e:
-        shapes = ", ".join(f"{n}: {a.shape}" for n, a in zip(_NAMES, arrays))
+        shapes = ", ".join(f"{n}: {a.shape}" for n, a in zip(names, arrays))
         raise ValueError(f"arrays do not broadcast together ({shapes})") from e
     shape = b[0].shape
     flat = tuple(np.ascontiguousarray(x, dtype=np.float64).reshape(-1) for x in b)
     return shape, flat
+
+
+def _flatten(
+    material: Material,
+    angles: tuple[ArrayLike, ...],
+) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
+    """Broadcast the four angle arguments (and the wavelength, when given: a fifth); return the
+    shape and the flat C-contiguous float64 arrays (views when the input already is one,
+    copies otherwise)."""
+    _check_material(material)
+    return _broadcast(_NAMES, angles)
 
 
 def _args(
@@ -420,4 +441,329 @@ def fit(
         int(starts),
         int(seed),
         _wl(flat),
+    )
+
+
+# --- Thermal emission (Kirchhoff's law, Planck's law, the observed radiance) -----------------
+
+
+class Emissivity(NamedTuple):
+    """Result of :func:`emissivity` (dimensionless; psps basis of the emitted beam).
+
+    - ``eps``: the emissivity Stokes vector ``ε = e0 − ∫_H F(w_i, w_r)[:, 0] cosθi dω_i``
+      (route A, the definition; ``e0 = (1, 0, 0, 0)``), shape ``broadcast_shape + (4,)``. A
+      surface at temperature T emits the Stokes radiance ``B_λ(λ, T)·ε``. ``ε1 < 0`` means
+      p-polarized emission; ``ε2 = ε3 = 0`` for this isotropic model (computed, not assumed).
+    - ``eps_b``: the same by route B (reciprocity): ``e0`` minus the directional–hemispherical
+      reflectance of light incident from the view direction, for each input state; shape
+      ``broadcast_shape + (4,)``. ``eps_b[..., 0] = 1 − albedo(θr)``.
+    - ``eps_s``, ``eps_p``: ``ε0 + ε1`` and ``ε0 − ε1``, the emissivities of the s and p
+      components; shape ``broadcast_shape``.
+    - ``dolp``: degree of linear polarization of the emitted light ``sqrt(ε1² + ε2²)/ε0``.
+    - ``reciprocity_residual``: ``max_j |ε_j − ε_B,j|`` — rounding and quadrature error
+      (< 1e-12) for the reciprocal ``standard`` form, the model's non-reciprocity for
+      ``azimuth_term="eq3"``.
+    - ``valid``: (bool) whether the emissivity of every polarization state lies in [0, 1] to
+      1e-6 (``ε0 ∓ |(ε1, ε2, ε3)|``). The model is not energy-conserving: a parameter set that
+      reflects more than it receives gives values outside — flagged here, never clipped.
+    """
+
+    eps: NDArray[np.float64]
+    eps_b: NDArray[np.float64]
+    eps_s: NDArray[np.float64]
+    eps_p: NDArray[np.float64]
+    dolp: NDArray[np.float64]
+    reciprocity_residual: NDArray[np.float64]
+    valid: NDArray[np.bool_]
+
+
+class Radiance(NamedTuple):
+    """Result of :func:`radiance`; radiances in W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹
+    integrated over a band (psps basis of the beam toward the sensor).
+
+    - ``stokes``: the Stokes radiance at the sensor, ``τ·(emitted + reflected) + L_path·e0``,
+      shape ``views_shape + (4,)``.
+    - ``emitted``: the thermal emission ``B_λ(λ, T)·ε`` at the surface (zero without
+      ``temperature_k``), shape ``views_shape + (4,)``.
+    - ``reflected``: the sky reflected by the surface, ``∫_H F(w, w_r)·L_sky(w) cosθ dω``,
+      shape ``views_shape + (4,)``.
+    - ``dolp``: degree of linear polarization of ``stokes``, shape ``views_shape``.
+    - ``aolp``: angle of linear polarization of ``stokes``, in degrees in (−90, 90] (radians
+      with ``degrees=False``), from the s axis toward p; shape ``views_shape``.
+    """
+
+    stokes: NDArray[np.float64]
+    emitted: NDArray[np.float64]
+    reflected: NDArray[np.float64]
+    dolp: NDArray[np.float64]
+    aolp: NDArray[np.float64]
+
+
+def planck(wavelength_um: ArrayLike, temperature_k: ArrayLike) -> NDArray[np.float64]:
+    """Planck's law: the spectral radiance of a blackbody, in W·m⁻²·sr⁻¹·µm⁻¹.
+
+    ``B_λ(λ, T) = c1L / (λ⁵·(exp(c2/(λT)) − 1))`` with ``c1L = 2hc² = 1.191042972e8
+    W·µm⁴·m⁻²·sr⁻¹`` and ``c2 = hc/k = 14387.76877 µm·K`` (CODATA 2018).
+
+    Parameters
+    ----------
+    wavelength_um : array_like
+        Vacuum wavelength in µm (finite, > 0).
+    temperature_k : array_like
+        Temperature in K (finite, > 0). Broadcast with ``wavelength_um``.
+
+    Returns
+    -------
+    ndarray of float64, shape ``broadcast_shape``
+        (a NumPy scalar for scalar input). 0 where ``c2/(λT) > 700`` (the exponential would
+        overflow: a cold body at a short wavelength).
+
+    Raises
+    ------
+    ValueError
+        For an element that is not finite and > 0, naming the argument, the value and the
+        flat index (and its position in a multi-dimensional broadcast shape).
+    """
+    shape, flat = _broadcast(("wavelength_um", "temperature_k"), (wavelength_um, temperature_k))
+    try:
+        out = _polbrdf.planck_flat(*flat)
+    except ValueError as e:
+        raise _located(e, shape) from None
+    return _scalar_or_array(out, shape)
+
+
+def brightness_temperature(wavelength_um: ArrayLike, radiance: ArrayLike) -> NDArray[np.float64]:
+    """The brightness temperature in K: the temperature T of the blackbody whose spectral
+    radiance :func:`planck` at ``wavelength_um`` (µm) is ``radiance`` (W·m⁻²·sr⁻¹·µm⁻¹),
+    ``T = c2/(λ·ln(1 + c1L/(λ⁵·L)))``. The arguments broadcast; the result has their shape.
+
+    Raises ``ValueError`` for an element that is not finite and > 0, naming the argument, the
+    value and the flat index.
+    """
+    shape, flat = _broadcast(("wavelength_um", "radiance"), (wavelength_um, radiance))
+    try:
+        out = _polbrdf.brightness_temperature_flat(*flat)
+    except ValueError as e:
+        raise _located(e, shape) from None
+    return _scalar_or_array(out, shape)
+
+
+def emissivity(
+    material: Material,
+    theta_r: ArrayLike,
+    *,
+    degrees: bool = True,
+    wavelength_um: ArrayLike | None = None,
+) -> Emissivity:
+    """The emissivity Stokes vector of an opaque surface seen from view zenith ``theta_r``, by
+    Kirchhoff's law (the core's ``analysis::emission``; dimensionless).
+
+    Inside an isothermal enclosure a surface sends ``B·(1, 0, 0, 0)`` into every direction:
+    what it reflects of the enclosure plus what it emits, so the emitted Stokes radiance at
+    temperature T is ``B_λ(λ, T)·ε`` with ``ε = e0 − ∫_H F(w_i, w_r)[:, 0] cosθi dω_i``. The
+    hemispherical integrals are a facet-normal quadrature accurate to 1e-6 on every component
+    for σ from 0.05° to 80°; the volume term is integrated in closed form. The model is
+    isotropic: ε does not depend on the view azimuth.
+
+    Parameters
+    ----------
+    material : Material
+        The ``standard`` form (the ``paper`` form's hemispherical integrals diverge).
+    theta_r : array_like
+        View zenith angle, in [0°, 90°) — degrees, or radians with ``degrees=False``.
+    degrees : bool
+        Whether ``theta_r`` is in degrees (default) or radians.
+    wavelength_um : array_like, optional
+        Vacuum wavelength in µm, broadcast with ``theta_r``: required for a spectral index
+        (``Material(index=...)``), evaluated with its index at each wavelength; a constant
+        index does not depend on it. Each distinct wavelength is one batch of all its distinct
+        angles.
+
+    Returns
+    -------
+    Emissivity
+        ``eps``, ``eps_b`` of shape ``broadcast_shape + (4,)``; ``eps_s``, ``eps_p``, ``dolp``,
+        ``reciprocity_residual`` and ``valid`` (bool) of ``broadcast_shape`` (NumPy scalars
+        for scalar input). See :class:`Emissivity`.
+
+    Raises
+    ------
+    ValueError
+        For ``theta_r`` NaN/inf or outside [0°, 90°) (naming ``theta_r``, the value and the flat
+        index); a wavelength not finite and > 0 or outside a spectral index's data (naming
+        ``wavelength_um`` and the index); a spectral material without ``wavelength_um``; the
+        ``paper`` form (the core's message).
+    TypeError
+        For a non-Material ``material`` or non-real arguments.
+    """
+    _check_material(material)
+    names = ("theta_r", "wavelength_um")
+    args = (theta_r,) if wavelength_um is None else (theta_r, wavelength_um)
+    shape, flat = _broadcast(names, args)
+    try:
+        e, eb, es, ep, d, r, v = _polbrdf.emissivity_flat(
+            material, flat[0], degrees, flat[1] if len(flat) == 2 else None
+        )
+    except ValueError as err:
+        raise _located(err, shape) from None
+    return Emissivity(
+        e.reshape(shape + (4,)),
+        eb.reshape(shape + (4,)),
+        _scalar_or_array(es, shape),
+        _scalar_or_array(ep, shape),
+        _scalar_or_array(d, shape),
+        _scalar_or_array(r, shape),
+        _scalar_or_array(v, shape),
+    )
+
+
+def _scalar(name: str, x: ArrayLike | None, hint: str = "") -> float | None:
+    """A scalar keyword argument as a float (``None`` stays ``None``)."""
+    if x is None:
+        return None
+    arr = np.asarray(x)
+    if arr.dtype.kind not in "biuf":
+        raise TypeError(f"`{name}` must be a real number, got dtype {arr.dtype}")
+    if arr.ndim != 0:
+        raise ValueError(f"`{name}` must be a scalar, got an array of shape {arr.shape}{hint}")
+    return float(arr)
+
+
+def _table(
+    name: str, t: tuple[ArrayLike, ArrayLike] | None, columns: tuple[str, str]
+) -> tuple[_F64, _F64] | None:
+    """A pair of 1-D arrays (a band, a sky profile) as contiguous float64 arrays."""
+    if t is None:
+        return None
+    if isinstance(t, (str, bytes)) or not isinstance(t, Sequence) or len(t) != 2:
+        raise TypeError(f"`{name}` must be a pair ({columns[0]}, {columns[1]}) of 1-D arrays")
+    out = []
+    for col, a in zip(columns, t):
+        arr = np.asarray(a)
+        if arr.dtype.kind not in "biuf":
+            raise TypeError(f"`{name}`: `{col}` must hold real numbers, got dtype {arr.dtype}")
+        if arr.ndim != 1:
+            raise ValueError(f"`{name}`: `{col}` must be a 1-D array, got shape {arr.shape}")
+        out.append(np.ascontiguousarray(arr, dtype=np.float64))
+    return out[0], out[1]
+
+
+def radiance(
+    material: Material,
+    theta_r: ArrayLike,
+    phi_r: ArrayLike,
+    *,
+    degrees: bool = True,
+    wavelength_um: float | None = None,
+    band: tuple[ArrayLike, ArrayLike] | None = None,
+    band_step_um: float | None = None,
+    temperature_k: float | None = None,
+    sky: str = "none",
+    sky_radiance: float | None = None,
+    sky_temperature_k: float | None = None,
+    sky_profile: tuple[ArrayLike, ArrayLike] | None = None,
+    transmittance: float = 1.0,
+    path_radiance: float = 0.0,
+) -> Radiance:
+    """The observed Stokes radiance of a surface in a thermal scene: its own polarized
+    emission, the sky it reflects, and the atmosphere between it and the sensor (the core's
+    ``analysis::scene::observed_radiance``).
+
+    ``S(w_r) = B_λ(λ, T)·ε(w_r) + ∫_H F(w, w_r)·L_sky(w) cosθ dω`` and at the sensor
+    ``S_sensor = τ·S + L_path·(1, 0, 0, 0)``. For a uniform sky of radiance ``L_d`` (``"uniform"``,
+    or ``"thermal"`` with ``L_d = B_λ(λ, T_sky)``) the sky term is exactly ``L_d·(e0 − ε)`` by
+    Kirchhoff's law, so ``S = L_d·e0 + (B_λ(T) − L_d)·ε``: unpolarized when ``B_λ(T) = L_d``
+    (an isothermal enclosure), and S1 changes sign (AoLP turns by 90°) when the sky is the
+    brighter. A tabulated profile sky takes the general sky integral.
+
+    **Units**: radiances (``stokes``, ``emitted``, ``reflected``) are spectral radiances in
+    **W·m⁻²·sr⁻¹·µm⁻¹** at one wavelength (``wavelength_um``), and band radiances
+    ``∫ R(λ)·S(λ) dλ`` in **W·m⁻²·sr⁻¹** over a ``band`` (the Stokes vector is integrated, then
+    DoLP and AoLP taken of it). ``sky_radiance``, ``sky_profile``'s radiances and
+    ``path_radiance`` are spectral radiances (W·m⁻²·sr⁻¹·µm⁻¹), constant across a band.
+
+    Parameters
+    ----------
+    material : Material
+        The ``standard`` form (the ``paper`` form has no emissivity).
+    theta_r, phi_r : array_like
+        View zenith (in [0°, 90°)) and azimuth, degrees (radians with ``degrees=False``);
+        broadcast together to ``views_shape``. Directions point from the surface to the sensor.
+    degrees : bool
+        Unit of the angles and of the returned AoLP.
+    wavelength_um : float, optional
+        One vacuum wavelength in µm (a scalar). Exactly one of ``wavelength_um`` and ``band``.
+    band : (wavelengths_um, response), optional
+        A band: its relative spectral response ``response[i]`` (≥ 0) at strictly increasing
+        ``wavelengths_um[i]`` (µm), 1-D arrays, linear between them and zero outside; results
+        are integrated over it with 3-point Gauss–Legendre pieces.
+    band_step_um : float, optional
+        Largest quadrature piece over the band in µm (default: 1/16 of its width; the
+        tabulated wavelengths of a spectral index are panel edges as well). Only with ``band``.
+    temperature_k : float, optional
+        Surface temperature in K (> 0); ``None``: no thermal emission.
+    sky : str
+        ``"none"`` (nothing to reflect), ``"uniform"`` (an unpolarized sky of radiance
+        ``sky_radiance`` everywhere), ``"thermal"`` (a uniform sky radiating as a blackbody at
+        ``sky_temperature_k``) or ``"profile"`` (``sky_profile``, depending on the zenith angle).
+    sky_radiance : float, optional
+        For ``sky="uniform"`` only: W·m⁻²·sr⁻¹·µm⁻¹ (≥ 0).
+    sky_temperature_k : float, optional
+        For ``sky="thermal"`` only: the sky's brightness temperature in K (> 0).
+    sky_profile : (zenith_deg, radiance), optional
+        For ``sky="profile"`` only: 1-D arrays, zenith angles in degrees strictly increasing
+        from 0 to 90, spectral radiance (≥ 0, W·m⁻²·sr⁻¹·µm⁻¹) at each, linear between them;
+        an unpolarized sky independent of azimuth.
+    transmittance : float
+        Atmospheric transmittance τ in [0, 1] between surface and sensor (default 1).
+    path_radiance : float
+        Unpolarized path radiance added at the sensor, W·m⁻²·sr⁻¹·µm⁻¹ (≥ 0, default 0).
+
+    Returns
+    -------
+    Radiance
+        ``stokes``, ``emitted``, ``reflected`` of shape ``views_shape + (4,)``, ``dolp`` and
+        ``aolp`` of ``views_shape``. See :class:`Radiance`.
+
+    Raises
+    ------
+    ValueError
+        For a view angle NaN/inf or a zenith outside [0°, 90°) (naming the argument, the value
+        and the flat index); both or neither of ``wavelength_um`` and ``band``; a sky argument
+        missing for its model or given to another model; an unknown sky model; an invalid
+        temperature, radiance, transmittance, band or profile (naming the argument); a
+        wavelength outside a spectral index's data; the ``paper`` form (the core's message).
+    TypeError
+        For a non-Material ``material`` or non-real arguments.
+    """
+    _check_material(material)
+    shape, flat = _broadcast(("theta_r", "phi_r"), (theta_r, phi_r))
+    if not isinstance(sky, str):
+        raise TypeError(f"`sky` must be a string, not {type(sky).__name__}")
+    kwargs = {
+        "wavelength_um": _scalar(
+            "wavelength_um",
+            wavelength_um,
+            " (one wavelength in µm: call radiance once per wavelength, or give band=)",
+        ),
+        "band": _table("band", band, ("wavelengths_um", "response")),
+        "band_step_um": _scalar("band_step_um", band_step_um),
+        "temperature_k": _scalar("temperature_k", temperature_k),
+        "sky": sky,
+        "sky_radiance": _scalar("sky_radiance", sky_radiance),
+        "sky_temperature_k": _scalar("sky_temperature_k", sky_temperature_k),
+        "sky_profile": _table("sky_profile", sky_profile, ("zenith_deg", "radiance")),
+        "transmittance": _scalar("transmittance", transmittance),
+        "path_radiance": _scalar("path_radiance", path_radiance),
+    }
+    try:
+        s, em, re, d, a = _polbrdf.radiance_flat(material, flat[0], flat[1], degrees, **kwargs)
+    except ValueError as e:
+        raise _located(e, shape) from None
+    return Radiance(
+        s.reshape(shape + (4,)),
+        em.reshape(shape + (4,)),
+        re.reshape(shape + (4,)),
+        _scalar_or_array(d, shape),
+        _scalar_or_array(a, shape),
     )

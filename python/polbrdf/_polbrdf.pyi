@@ -6,7 +6,19 @@ from typing import Any, final
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["Material", "brdf_dolp_flat", "evaluate_flat", "mueller_flat"]
+__all__ = [
+    "FitResult",
+    "Material",
+    "brdf_dolp_flat",
+    "brightness_temperature_flat",
+    "emissivity_flat",
+    "evaluate_flat",
+    "fit_flat",
+    "index_flat",
+    "mueller_flat",
+    "planck_flat",
+    "radiance_flat",
+]
 
 @final
 class Material:
@@ -155,6 +167,59 @@ def evaluate_flat(
     NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None
 ]:
     """BRDF, DoLP, AoLP (and the (n, 16) pBRDF) at n geometries."""
+
+def planck_flat(
+    wavelength_um: NDArray[np.float64], temperature_k: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Planck's law B_λ (W·m⁻²·sr⁻¹·µm⁻¹) at n (λ in µm, T in K) pairs; ValueError (with
+    ``argument`` and ``index``) for an element not finite and > 0."""
+
+def brightness_temperature_flat(
+    wavelength_um: NDArray[np.float64], radiance: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Brightness temperature (K) of n spectral radiances (W·m⁻²·sr⁻¹·µm⁻¹) at λ (µm)."""
+
+def emissivity_flat(
+    material: Material,
+    theta_r: NDArray[np.float64],
+    degrees: bool,
+    wavelength_um: NDArray[np.float64] | None = None,
+) -> tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.bool_],
+]:
+    """Emissivity at n view zeniths (each at its wavelength, µm): eps (n, 4), eps_b (n, 4),
+    eps_s, eps_p, dolp, reciprocity_residual, valid (n)."""
+
+def radiance_flat(
+    material: Material,
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    degrees: bool,
+    wavelength_um: float | None = None,
+    band: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    band_step_um: float | None = None,
+    temperature_k: float | None = None,
+    sky: str = "none",
+    sky_radiance: float | None = None,
+    sky_temperature_k: float | None = None,
+    sky_profile: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    transmittance: float = 1.0,
+    path_radiance: float = 0.0,
+) -> tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+]:
+    """Observed Stokes radiance at n views: stokes, emitted, reflected (n, 4), dolp, aolp (n);
+    W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band."""
 
 class FitResult:
     """The outcome of :func:`polbrdf.fit`: fitted parameters with their uncertainties."""

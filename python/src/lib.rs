@@ -7,21 +7,33 @@
 //! the core's batch API ([`batch::mueller_into`], [`batch::brdf_dolp_into`]), writing straight
 //! into the NumPy output arrays.
 //!
+//! Thermal emission takes the same road: Planck's law on flat wavelength/temperature arrays
+//! ([`planck_flat`], [`brightness_temperature_flat`]), the emissivity Stokes vector per view
+//! zenith and wavelength, batched by distinct wavelength and zenith into the core's
+//! `analysis::emission::emissivities` ([`emissivity_flat`]), and the observed Stokes radiance of
+//! a thermal scene through `analysis::scene::observed_radiance` ([`radiance_flat`]).
+//!
 //! Errors are Python exceptions: the core's `InvalidAngle` / `InvalidParameter` /
 //! `InconsistentParameters` / `UnknownPreset` become `ValueError` with the core's message, file
 //! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use polbrdf::analysis::emission::{emissivities, Emissivity};
+use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, ThermalScene};
+use polbrdf::analysis::sky::ZenithProfile;
+use polbrdf::analysis::thermal;
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
 use polbrdf::GeometryBatch;
-use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
+use polbrdf::{AngleProblem, AzimuthTerm, Band, Form, Material, MaterialSpec, Spectrum};
 use pyo3::exceptions::{
     PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyValueError,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use rayon::prelude::*;
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
 /// Elements per parallel task (as the core's batch module).
@@ -30,18 +42,39 @@ const CHUNK: usize = 2048;
 // ---------------------------------------------------------------------------------------------
 // Errors
 
-/// A core error as a `ValueError` carrying the core's message. For a bad angle of a batch the
-/// exception also gets the attributes `index` (flat position) and `argument` (`theta_i`, …),
-/// which the Python layer turns into a position in the broadcast shape.
+/// A core error as a `ValueError` carrying the core's message. For a bad angle of a batch (and a
+/// wavelength of a batch outside a spectral index's data) the exception also gets the
+/// attributes `index` (flat position) and `argument` (`theta_i`, …, `wavelength_um`), which the
+/// Python layer turns into a position in the broadcast shape.
 fn core_err(py: Python<'_>, e: &polbrdf::Error) -> PyErr {
     let err = PyValueError::new_err(e.to_string());
-    if let polbrdf::Error::InvalidAngle { name, index, .. } = e {
+    let located = match e {
+        polbrdf::Error::InvalidAngle { name, index, .. } => Some((python_name(name), *index)),
+        polbrdf::Error::WavelengthOutOfRange {
+            position: Some(i), ..
+        } => Some(("wavelength_um", Some(*i))),
+        _ => None,
+    };
+    if let Some((argument, index)) = located {
         let value = err.value(py);
         // Setting attributes on a fresh ValueError cannot fail; ignore it if it ever does.
-        let _ = value.setattr("argument", python_name(name));
+        let _ = value.setattr("argument", argument);
         if let Some(i) = index {
-            let _ = value.setattr("index", *i);
+            let _ = value.setattr("index", i);
         }
+    }
+    err
+}
+
+/// As [`core_err`] for an error about one element of the flat arrays handed over by the Python
+/// layer: a [`polbrdf::Error::InvalidParameterAt`] also gets `argument` and `index` (its
+/// position in those arrays). Not for positions in other tables (a band, a sky profile).
+fn element_err(py: Python<'_>, e: &polbrdf::Error) -> PyErr {
+    let err = core_err(py, e);
+    if let polbrdf::Error::InvalidParameterAt { name, index, .. } = e {
+        let value = err.value(py);
+        let _ = value.setattr("argument", *name);
+        let _ = value.setattr("index", *index);
     }
     err
 }
@@ -476,12 +509,7 @@ fn with_engine<T>(
 ) -> Result<T, polbrdf::Error> {
     let spec = m.spec();
     match wavelengths {
-        None if spec.is_spectral() => {
-            let (lo, hi) = spec.wavelength_range().unwrap_or((f64::NAN, f64::NAN));
-            Err(polbrdf::Error::InconsistentParameters(format!(
-                "the material has a spectral index ({lo}–{hi} µm): give wavelength_um="
-            )))
-        }
+        None if spec.is_spectral() => Err(needs_wavelength(spec)),
         None => f(&Engine::new(m)),
         Some(wl) => {
             // A wavelength outside the data: its position in the whole array.
@@ -504,6 +532,14 @@ fn with_engine<T>(
             f(&engine)
         }
     }
+}
+
+/// The refusal to evaluate a material with a spectral index without wavelengths.
+fn needs_wavelength(spec: &MaterialSpec) -> polbrdf::Error {
+    let (lo, hi) = spec.wavelength_range().unwrap_or((f64::NAN, f64::NAN));
+    polbrdf::Error::InconsistentParameters(format!(
+        "the material has a spectral index ({lo}–{hi} µm): give wavelength_um="
+    ))
 }
 
 /// The wavelength array as a slice of the angles' length.
@@ -797,6 +833,537 @@ fn index_flat<'py>(
         PyValueError::new_err(format!("wavelength_um = {} (at index {i}): {e}", wl[i]))
     })?;
     Ok((PyArray1::from_vec(py, n), PyArray1::from_vec(py, k)))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Thermal emission and the observed radiance
+
+/// A flat argument as a slice (contiguous by construction in the Python layer).
+fn flat<'a>(a: &'a PyReadonlyArray1<'_, f64>, name: &str) -> PyResult<&'a [f64]> {
+    a.as_slice()
+        .map_err(|e| PyValueError::new_err(format!("`{name}` must be a contiguous 1-D array: {e}")))
+}
+
+/// Two flat arguments of equal length.
+fn flat_pair<'a>(
+    a: &'a PyReadonlyArray1<'_, f64>,
+    b: &'a PyReadonlyArray1<'_, f64>,
+    names: [&'static str; 2],
+) -> PyResult<(&'a [f64], &'a [f64])> {
+    let (x, y) = (flat(a, names[0])?, flat(b, names[1])?);
+    if x.len() != y.len() {
+        return Err(PyValueError::new_err(format!(
+            "`{}` has {} elements, `{}` {}",
+            names[1],
+            y.len(),
+            names[0],
+            x.len()
+        )));
+    }
+    Ok((x, y))
+}
+
+/// Checks that `value` (element `index` of the argument `name`) is finite and > 0, with the
+/// core's wording.
+fn positive_at(name: &'static str, value: f64, index: usize) -> Result<f64, polbrdf::Error> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(polbrdf::Error::InvalidParameterAt {
+            name,
+            value,
+            index,
+            reason: "must be finite and > 0",
+        })
+    }
+}
+
+/// A core [`polbrdf::Error::InvalidParameter`] about element `index` of a flat argument.
+fn at_index(e: polbrdf::Error, index: usize) -> polbrdf::Error {
+    match e {
+        polbrdf::Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => polbrdf::Error::InvalidParameterAt {
+            name,
+            value,
+            index,
+            reason,
+        },
+        polbrdf::Error::WavelengthOutOfRange {
+            material,
+            wavelength_um,
+            range,
+            ..
+        } => polbrdf::Error::WavelengthOutOfRange {
+            material,
+            wavelength_um,
+            range,
+            position: Some(index),
+        },
+        other => other,
+    }
+}
+
+/// A view zenith angle (element `index` of the argument `name`, in degrees when `degrees`) in
+/// radians, checked to lie in `[0, π/2)` as the emissivity needs (`-0` becomes `+0`).
+fn view_zenith(
+    name: &'static str,
+    value: f64,
+    degrees: bool,
+    index: usize,
+) -> Result<f64, polbrdf::Error> {
+    let rad = if degrees { value.to_radians() } else { value };
+    if rad.is_finite() && (0.0..FRAC_PI_2).contains(&rad) {
+        Ok(rad + 0.0)
+    } else {
+        Err(polbrdf::Error::InvalidAngle {
+            name,
+            value,
+            degrees,
+            index: Some(index),
+            problem: if value.is_finite() {
+                AngleProblem::ViewBelowHorizon
+            } else {
+                AngleProblem::NotFinite
+            },
+        })
+    }
+}
+
+/// A view azimuth angle in radians, checked to be finite.
+fn view_azimuth(value: f64, degrees: bool, index: usize) -> Result<f64, polbrdf::Error> {
+    let rad = if degrees { value.to_radians() } else { value };
+    if rad.is_finite() {
+        Ok(rad)
+    } else {
+        Err(polbrdf::Error::InvalidAngle {
+            name: "phi_r",
+            value,
+            degrees,
+            index: Some(index),
+            problem: AngleProblem::NotFinite,
+        })
+    }
+}
+
+/// Planck's law `B_λ(λ, T)` (W·m⁻²·sr⁻¹·µm⁻¹) at `n` pairs of a wavelength (µm) and a
+/// temperature (K), through the core's `planck_checked`.
+#[pyfunction]
+fn planck_flat<'py>(
+    py: Python<'py>,
+    wavelength_um: PyReadonlyArray1<'py, f64>,
+    temperature_k: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let (l, t) = flat_pair(
+        &wavelength_um,
+        &temperature_k,
+        ["wavelength_um", "temperature_k"],
+    )?;
+    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    {
+        let mut w = out.readwrite();
+        let o = w.as_slice_mut().expect("a new array is contiguous");
+        let valid = py.detach(|| {
+            o.par_chunks_mut(CHUNK).enumerate().all(|(c, o)| {
+                let start = c * CHUNK;
+                o.iter_mut().enumerate().all(|(j, o)| {
+                    match thermal::planck_checked(l[start + j], t[start + j]) {
+                        Ok(b) => {
+                            *o = b;
+                            true
+                        }
+                        Err(_) => false,
+                    }
+                })
+            })
+        });
+        if !valid {
+            // The first bad element, found again in order (the parallel pass may stop at any).
+            for (i, (&l, &t)) in l.iter().zip(t).enumerate() {
+                if let Err(e) = thermal::planck_checked(l, t) {
+                    return Err(element_err(py, &at_index(e, i)));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The brightness temperature (K) of `n` spectral radiances (W·m⁻²·sr⁻¹·µm⁻¹) at wavelengths
+/// (µm), through the core's `brightness_temperature`.
+#[pyfunction]
+fn brightness_temperature_flat<'py>(
+    py: Python<'py>,
+    wavelength_um: PyReadonlyArray1<'py, f64>,
+    radiance: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let (l, r) = flat_pair(&wavelength_um, &radiance, ["wavelength_um", "radiance"])?;
+    for (i, (&l, &r)) in l.iter().zip(r).enumerate() {
+        positive_at("wavelength_um", l, i)
+            .and_then(|_| positive_at("radiance", r, i))
+            .map_err(|e| element_err(py, &e))?;
+    }
+    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    {
+        let mut w = out.readwrite();
+        let o = w.as_slice_mut().expect("a new array is contiguous");
+        py.detach(|| {
+            o.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
+                let start = c * CHUNK;
+                for (j, o) in o.iter_mut().enumerate() {
+                    *o = thermal::brightness_temperature(l[start + j], r[start + j]);
+                }
+            })
+        });
+    }
+    Ok(out)
+}
+
+/// The emissivity of `m` toward every view zenith of `theta_r`, each at its wavelength:
+/// validated in order, then one core `emissivities` call per distinct wavelength (one in all
+/// for a constant index) with the distinct zenith angles of that wavelength.
+fn emissivity_batch(
+    m: &Material,
+    theta_r: &[f64],
+    degrees: bool,
+    wavelengths: Option<&[f64]>,
+) -> Result<Vec<Emissivity>, polbrdf::Error> {
+    let n = theta_r.len();
+    let rad = theta_r
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| view_zenith("theta_r", t, degrees, i))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let spec = m.spec();
+    // The material of each element: one per distinct wavelength of a spectral index.
+    let mut materials: Vec<Material> = Vec::new();
+    let mut group = vec![0usize; n];
+    match wavelengths {
+        None if spec.is_spectral() => return Err(needs_wavelength(spec)),
+        Some(wl) if spec.is_spectral() => {
+            let mut seen: HashMap<u64, usize> = HashMap::new();
+            for (i, &l) in wl.iter().enumerate() {
+                positive_at("wavelength_um", l, i)?;
+                group[i] = match seen.get(&l.to_bits()) {
+                    Some(&g) => g,
+                    None => {
+                        materials.push(m.at_wavelength(l).map_err(|e| at_index(e, i))?);
+                        seen.insert(l.to_bits(), materials.len() - 1);
+                        materials.len() - 1
+                    }
+                };
+            }
+        }
+        Some(wl) => {
+            // A constant index does not depend on λ: one evaluation for every wavelength.
+            for (i, &l) in wl.iter().enumerate() {
+                positive_at("wavelength_um", l, i)?;
+            }
+            materials.push(m.clone());
+        }
+        None => materials.push(m.clone()),
+    }
+    // The distinct zenith angles of each material, in first-seen order.
+    let mut seen: Vec<HashMap<u64, usize>> = vec![HashMap::new(); materials.len()];
+    let mut zeniths: Vec<Vec<f64>> = vec![Vec::new(); materials.len()];
+    let slot: Vec<usize> = rad
+        .iter()
+        .zip(&group)
+        .map(|(&t, &g)| {
+            *seen[g].entry(t.to_bits()).or_insert_with(|| {
+                zeniths[g].push(t);
+                zeniths[g].len() - 1
+            })
+        })
+        .collect();
+    let results: Vec<Vec<Emissivity>> = materials
+        .par_iter()
+        .zip(zeniths.par_iter())
+        .map(|(m, z)| emissivities(m, z))
+        .collect::<Result<_, _>>()?;
+    Ok(group
+        .iter()
+        .zip(&slot)
+        .map(|(&g, &j)| results[g][j])
+        .collect())
+}
+
+/// The arrays of [`emissivity_flat`].
+type Emitted<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<bool>>,
+);
+
+/// `n` Stokes vectors as an `(n, 4)` float64 array.
+fn stokes_array<'py>(
+    py: Python<'py>,
+    s: impl Iterator<Item = polbrdf::Stokes>,
+    n: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let v: Vec<f64> = s.flat_map(|s| s.0).collect();
+    PyArray1::from_vec(py, v).reshape([n, 4])
+}
+
+/// The emissivity (Kirchhoff's law, the core's `analysis::emission::emissivities`) toward `n`
+/// view zenith angles `theta_r` (degrees when `degrees`, else radians; in `[0°, 90°)`), each at
+/// its wavelength (µm; required for a spectral index): `(eps (n, 4), eps_b (n, 4), eps_s,
+/// eps_p, dolp, reciprocity_residual, valid)`.
+#[pyfunction]
+#[pyo3(signature = (material, theta_r, degrees, wavelength_um=None))]
+fn emissivity_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<Emitted<'py>> {
+    let t = flat(&theta_r, "theta_r")?;
+    let n = t.len();
+    let wl = wavelength_slice(&wavelength_um, n)?;
+    let m = &material.inner;
+    let e = py
+        .detach(|| emissivity_batch(m, t, degrees, wl))
+        .map_err(|e| element_err(py, &e))?;
+    let column = |f: fn(&Emissivity) -> f64| PyArray1::from_vec(py, e.iter().map(f).collect());
+    Ok((
+        stokes_array(py, e.iter().map(|e| e.eps), n)?,
+        stokes_array(py, e.iter().map(|e| e.eps_b), n)?,
+        column(Emissivity::eps_s),
+        column(Emissivity::eps_p),
+        column(Emissivity::dolp),
+        column(Emissivity::reciprocity_residual),
+        PyArray1::from_vec(py, e.iter().map(Emissivity::is_valid).collect()),
+    ))
+}
+
+/// Most quadrature pieces a band may be split into (`band_step_um` against the band's width):
+/// every spectral node costs an emissivity quadrature, and a vanishing step would not end.
+const MAX_BAND_PIECES: f64 = 1e5;
+
+/// The spectrum of [`radiance_flat`]: one wavelength or a band, exactly one.
+fn radiance_spectrum(
+    wavelength_um: Option<f64>,
+    band: Option<(Vec<f64>, Vec<f64>)>,
+    band_step_um: Option<f64>,
+) -> PyResult<Spectrum> {
+    match (wavelength_um, band) {
+        (Some(_), Some(_)) => Err(PyValueError::new_err(
+            "give either `wavelength_um` (one wavelength, µm) or `band` = (wavelengths_um, \
+             response), not both",
+        )),
+        (None, None) => Err(PyValueError::new_err(
+            "give `wavelength_um` (one wavelength, µm) or `band` = (wavelengths_um, response): \
+             the radiance is spectral",
+        )),
+        (Some(_), None) if band_step_um.is_some() => Err(PyValueError::new_err(
+            "`band_step_um` is the quadrature step of a band: give `band`, not `wavelength_um`",
+        )),
+        (Some(l), None) => Ok(Spectrum::Wavelength(l)),
+        (None, Some((w, r))) => {
+            let band = Band::new("band", w, r).map_err(|e| {
+                let msg = e.to_string();
+                PyValueError::new_err(if msg.starts_with("band `band`") {
+                    msg
+                } else {
+                    format!("`band`: {msg}")
+                })
+            })?;
+            if let Some(s) = band_step_um {
+                let (lo, hi) = band.range();
+                if !(s.is_finite() && s > 0.0) {
+                    return Err(PyValueError::new_err(
+                        polbrdf::Error::InvalidParameter {
+                            name: "band_step_um",
+                            value: s,
+                            reason: "must be finite and > 0 (µm)",
+                        }
+                        .to_string(),
+                    ));
+                }
+                if (hi - lo) / s > MAX_BAND_PIECES {
+                    return Err(PyValueError::new_err(format!(
+                        "invalid parameter `band_step_um` = {s:e}: it would split the band \
+                         ({lo}–{hi} µm) into more than {MAX_BAND_PIECES} pieces"
+                    )));
+                }
+            }
+            Ok(Spectrum::Band(band, band_step_um))
+        }
+    }
+}
+
+/// The sky of [`radiance_flat`] from its model name and the one argument that model takes.
+fn radiance_sky(
+    sky: &str,
+    sky_radiance: Option<f64>,
+    sky_temperature_k: Option<f64>,
+    sky_profile: Option<(Vec<f64>, Vec<f64>)>,
+) -> PyResult<SkyModel> {
+    let given = [
+        ("sky_radiance", sky_radiance.is_some()),
+        ("sky_temperature_k", sky_temperature_k.is_some()),
+        ("sky_profile", sky_profile.is_some()),
+    ];
+    let (needs, what) = match sky {
+        "none" => (None, "no sky argument"),
+        "uniform" => (Some("sky_radiance"), "`sky_radiance` (W·m⁻²·sr⁻¹·µm⁻¹)"),
+        "thermal" => (Some("sky_temperature_k"), "`sky_temperature_k` (K)"),
+        "profile" => (
+            Some("sky_profile"),
+            "`sky_profile` = (zenith_deg, radiance)",
+        ),
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "invalid `sky`: unknown sky model `{other}` (expected \"none\", \"uniform\", \
+                 \"thermal\" or \"profile\")"
+            )))
+        }
+    };
+    for (name, is_given) in given {
+        if is_given && needs != Some(name) {
+            return Err(PyValueError::new_err(format!(
+                "`{name}` does not apply to sky = \"{sky}\", which takes {what}"
+            )));
+        }
+        if !is_given && needs == Some(name) {
+            return Err(PyValueError::new_err(format!(
+                "sky = \"{sky}\" needs {what}"
+            )));
+        }
+    }
+    Ok(match (sky_radiance, sky_temperature_k, sky_profile) {
+        (Some(radiance), _, _) => SkyModel::Uniform { radiance },
+        (_, Some(temperature_k), _) => SkyModel::Thermal { temperature_k },
+        (_, _, Some((zenith_deg, radiance))) => SkyModel::Profile(
+            ZenithProfile::new(zenith_deg, radiance)
+                .map_err(|e| PyValueError::new_err(format!("`sky_profile`: {e}")))?,
+        ),
+        (None, None, None) => SkyModel::None,
+    })
+}
+
+/// The Python argument of a key of the core's [`ThermalScene::validate`].
+fn scene_argument(core: &'static str) -> &'static str {
+    match core {
+        "surface.temperature_k" => "temperature_k",
+        "sky.radiance" => "sky_radiance",
+        "sky.temperature_k" => "sky_temperature_k",
+        "atmosphere.transmittance" => "transmittance",
+        "atmosphere.path_radiance" => "path_radiance",
+        other => other,
+    }
+}
+
+/// The arrays of [`radiance_flat`].
+type Observed<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<f64>>,
+);
+
+/// An optional pair of 1-D arrays (a band, a sky profile) as two vectors.
+type Table<'py> = Option<(PyReadonlyArray1<'py, f64>, PyReadonlyArray1<'py, f64>)>;
+
+fn table(t: Table<'_>) -> Option<(Vec<f64>, Vec<f64>)> {
+    t.map(|(a, b)| (a.as_array().to_vec(), b.as_array().to_vec()))
+}
+
+/// The observed Stokes radiance (the core's `analysis::scene::observed_radiance`) at `n` views
+/// `(theta_r, phi_r)` (degrees when `degrees`, else radians; `theta_r` in `[0°, 90°)`):
+/// `(stokes (n, 4), emitted (n, 4), reflected (n, 4), dolp, aolp)`, AoLP in the unit of the
+/// angles. W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band.
+#[pyfunction]
+#[pyo3(signature = (
+    material, theta_r, phi_r, degrees, wavelength_um=None, band=None, band_step_um=None,
+    temperature_k=None, sky="none", sky_radiance=None, sky_temperature_k=None, sky_profile=None,
+    transmittance=1.0, path_radiance=0.0
+))]
+#[allow(clippy::too_many_arguments)]
+fn radiance_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+    wavelength_um: Option<f64>,
+    band: Table<'py>,
+    band_step_um: Option<f64>,
+    temperature_k: Option<f64>,
+    sky: &str,
+    sky_radiance: Option<f64>,
+    sky_temperature_k: Option<f64>,
+    sky_profile: Table<'py>,
+    transmittance: f64,
+    path_radiance: f64,
+) -> PyResult<Observed<'py>> {
+    let (t, p) = flat_pair(&theta_r, &phi_r, ["theta_r", "phi_r"])?;
+    let n = t.len();
+    let spectrum = radiance_spectrum(wavelength_um, table(band), band_step_um)?;
+    let scene = ThermalScene {
+        surface_temperature_k: temperature_k,
+        sky: radiance_sky(sky, sky_radiance, sky_temperature_k, table(sky_profile))?,
+        atmosphere: Atmosphere {
+            transmittance,
+            path_radiance,
+        },
+    };
+    scene.validate().map_err(|e| match e {
+        polbrdf::Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => core_err(
+            py,
+            &polbrdf::Error::InvalidParameter {
+                name: scene_argument(name),
+                value,
+                reason,
+            },
+        ),
+        other => core_err(py, &other),
+    })?;
+    // The views in radians, checked in order; each distinct one evaluated once.
+    let mut seen: HashMap<(u64, u64), usize> = HashMap::new();
+    let mut views: Vec<(f64, f64)> = Vec::new();
+    let mut slot = Vec::with_capacity(n);
+    for (i, (&t, &p)) in t.iter().zip(p).enumerate() {
+        let v = view_zenith("theta_r", t, degrees, i)
+            .and_then(|t| Ok((t, view_azimuth(p, degrees, i)?)))
+            .map_err(|e| core_err(py, &e))?;
+        slot.push(
+            *seen
+                .entry((v.0.to_bits(), v.1.to_bits()))
+                .or_insert_with(|| {
+                    views.push(v);
+                    views.len() - 1
+                }),
+        );
+    }
+    let spec = material.inner.spec();
+    let r = py
+        .detach(|| observed_radiance(spec, &scene, &spectrum, &views))
+        .map_err(|e| core_err(py, &e))?;
+    let at = |k: &usize| &r[*k];
+    let to_unit = |a: f64| if degrees { a.to_degrees() } else { a };
+    Ok((
+        stokes_array(py, slot.iter().map(|k| at(k).stokes), n)?,
+        stokes_array(py, slot.iter().map(|k| at(k).emitted), n)?,
+        stokes_array(py, slot.iter().map(|k| at(k).reflected), n)?,
+        PyArray1::from_vec(py, slot.iter().map(|k| at(k).stokes.dolp()).collect()),
+        PyArray1::from_vec(
+            py,
+            slot.iter().map(|k| to_unit(at(k).stokes.aolp())).collect(),
+        ),
+    ))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1104,6 +1671,10 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
     m.add_function(wrap_pyfunction!(index_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(planck_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(brightness_temperature_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(emissivity_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(radiance_flat, m)?)?;
     m.add_class::<PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit_flat, m)?)?;
     Ok(())

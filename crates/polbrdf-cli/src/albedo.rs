@@ -93,7 +93,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             a.surface,
             a.volume
         );
-        if a.total() > 1.0 {
+        if a.total().is_infinite() {
+            out += "   <-- DIVERGES (infinite)";
+        } else if a.total() > 1.0 {
             out += &format!(
                 "   <-- EXCEEDS 1 by {:.4} ({:.1} %)",
                 a.total() - 1.0,
@@ -109,7 +111,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .map(|(t, a)| (*t, a.total()))
         .collect();
     out.push('\n');
-    if let Some(&(t, v)) = over.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+    if over.iter().any(|(_, v)| v.is_infinite()) {
+        out += &format!(
+            "WARNING: the albedo is infinite at {} of {} incidence angles: with the paper form's \
+             surface term cos²θN/(4cos²θi cos²θr), f·cosθr grows like 1/cosθr toward the \
+             horizon and its integral diverges (docs/model.md §10); use form = \"standard\" \
+             for albedo, emission and sky integrals.\n",
+            over.iter().filter(|(_, v)| v.is_infinite()).count(),
+            rows.len(),
+        );
+    } else if let Some(&(t, v)) = over.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
         out += &format!(
             "WARNING: the albedo exceeds 1 at {} of {} incidence angles (largest {:.4} at θi = {}°): \
              this parameter set violates energy conservation there.\n",

@@ -2,10 +2,13 @@
 //! preset — full Mueller and BRDF+DoLP evaluations per second on one thread and on all threads
 //! (medians of several repeats), the latency of a single evaluation (through the kernel's
 //! single-geometry entry point, and through the reference path `Material::evaluate`), the
-//! per-element index and a spectral sweep against the constant index, a checksum of the results
-//! and the CPU it ran on.
+//! per-element index and a spectral sweep against the constant index, polarized thermal emission
+//! at the default accuracy (one view direction, and a table of 90 view angles), a checksum of the
+//! results and the CPU it ran on.
 
 use crate::error::CliError;
+use polbrdf::analysis::emission::{emissivities, emissivity, Emissivity};
+use polbrdf::analysis::facets::FacetRule;
 use polbrdf::batch;
 use polbrdf::engine::{Engine, IndexColumns, Kernel};
 use polbrdf::Geometry;
@@ -217,6 +220,137 @@ fn run_index(
     })
 }
 
+/// The materials of the emission section: two presets and a rough paint.
+const EMISSION_MATERIALS: [&str; 3] = ["paint", "aluminium", "paint-sigma30"];
+/// View zeniths (degrees) of the single-direction timings.
+const EMISSION_THETAS_DEG: [f64; 3] = [0.0, 45.0, 80.0];
+/// Calls per timed repeat of a single direction (the time per call is their mean).
+const EMISSION_CALLS: usize = 3;
+
+/// A preset, or `paint-sigma30`: the `paint` preset with σ = 30°.
+fn emission_material(name: &str) -> Result<polbrdf::Material, CliError> {
+    let spec = match name {
+        "paint-sigma30" => polbrdf::MaterialSpec {
+            name: Some(name.into()),
+            sigma_deg: Some(30.0),
+            ..polbrdf::preset("paint").map_err(CliError::Model)?
+        },
+        preset => polbrdf::preset(preset).map_err(CliError::Model)?,
+    };
+    spec.build().map_err(CliError::Model)
+}
+
+/// One `emissivity` call (default rule, both routes) toward one view direction: seconds per
+/// call (medians over the repeats of the mean of [`EMISSION_CALLS`] calls), on one thread and on
+/// the parallel pool.
+struct EmissionDirection {
+    material: &'static str,
+    sigma_deg: f64,
+    theta_deg: f64,
+    /// Quadrature nodes of the rule per route (the call evaluates F at twice as many).
+    nodes: usize,
+    one_thread_s: f64,
+    parallel_s: f64,
+    eps: Emissivity,
+}
+
+/// Polarized thermal emission at the default accuracy: single directions, and the 90-angle
+/// table θ = 0°…89° of `paint` through the batch function `emissivities` (directions in
+/// parallel, each direction's nodes in parallel chunks).
+struct EmissionRun {
+    directions: Vec<EmissionDirection>,
+    table_one_thread_s: f64,
+    table_parallel_s: f64,
+    /// Σ ε0 over the table.
+    table_eps0_sum: f64,
+    /// The table is bit-identical on one thread and on the parallel pool, and a single call
+    /// gives the table's entry at the same angle.
+    consistent: bool,
+}
+
+fn run_emission(repeats: usize, threads: usize) -> Result<EmissionRun, CliError> {
+    let build = |t: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build()
+            .map_err(|e| CliError::Invalid(format!("--threads = {t}: {e}")))
+    };
+    let one = build(1)?;
+    let parallel = build(threads)?;
+    let mut directions = Vec::new();
+    for name in EMISSION_MATERIALS {
+        let m = emission_material(name)?;
+        let rule = FacetRule::for_material(&m).full();
+        for theta_deg in EMISSION_THETAS_DEG {
+            let t = theta_deg.to_radians();
+            let eps = emissivity(&m, t).map_err(CliError::Model)?;
+            let time = |pool: &rayon::ThreadPool| {
+                pool.install(|| {
+                    median_seconds(repeats, || {
+                        for _ in 0..EMISSION_CALLS {
+                            black_box(
+                                emissivity(black_box(&m), black_box(t)).expect("valid angle"),
+                            );
+                        }
+                    })
+                }) / EMISSION_CALLS as f64
+            };
+            let one_thread_s = time(&one);
+            let parallel_s = if threads == 1 {
+                one_thread_s
+            } else {
+                time(&parallel)
+            };
+            directions.push(EmissionDirection {
+                material: name,
+                sigma_deg: m.distribution().sigma().to_degrees(),
+                theta_deg,
+                nodes: rule.nodes(t).len(),
+                one_thread_s,
+                parallel_s,
+                eps,
+            });
+        }
+    }
+    let m = emission_material(EMISSION_MATERIALS[0])?;
+    let thetas: Vec<f64> = (0..90).map(|d| f64::from(d).to_radians()).collect();
+    // The two pools interleaved, so that a change of machine load affects both alike; no
+    // separate warm-up (the single directions above ran the same code).
+    let pools: &[&rayon::ThreadPool] = if threads == 1 {
+        &[&one]
+    } else {
+        &[&one, &parallel]
+    };
+    let mut tables = vec![Vec::new(); pools.len()];
+    let mut times = vec![Vec::new(); pools.len()];
+    for _ in 0..repeats {
+        for (k, pool) in pools.iter().enumerate() {
+            let t = Instant::now();
+            tables[k] = pool
+                .install(|| emissivities(black_box(&m), black_box(&thetas)))
+                .map_err(CliError::Model)?;
+            black_box(&tables[k]);
+            times[k].push(t.elapsed().as_secs_f64());
+        }
+    }
+    let times: Vec<f64> = times.into_iter().map(median).collect();
+    let (table_one_thread_s, table_parallel_s) = (times[0], times[times.len() - 1]);
+    let on_one = &tables[0];
+    let on_parallel = &tables[tables.len() - 1];
+    let consistent = on_one == on_parallel
+        && directions
+            .iter()
+            .filter(|d| d.material == EMISSION_MATERIALS[0])
+            .all(|d| on_one[d.theta_deg as usize] == d.eps);
+    Ok(EmissionRun {
+        table_one_thread_s,
+        table_parallel_s,
+        table_eps0_sum: on_one.iter().map(|e| e.eps.0[0]).sum(),
+        consistent,
+        directions,
+    })
+}
+
 /// Median latency (ns) of one call of `f` on the first geometries of the batch.
 fn latency_ns<T>(batch: &GeometryBatch<'_>, f: impl Fn(&Geometry) -> T) -> f64 {
     let geoms: Vec<Geometry> = (0..batch.len().min(1024)).map(|i| batch.get(i)).collect();
@@ -269,6 +403,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .map(|&t| run_with(t, args.repeats, &material, &batch))
         .collect::<Result<Vec<_>, _>>()?;
     let index = run_index(args.repeats, &material, &batch)?;
+    let emission = run_emission(args.repeats, threads)?;
     let kernel = Kernel::new(&material);
     let latency_kernel = latency_ns(&batch, |g| kernel.pbrdf(g));
     let latency_reference = latency_ns(&batch, |g| material.evaluate(g));
@@ -291,6 +426,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     "brdf_dolp_evals_per_s": per_s(r.brdf_dolp_s),
                     "mueller_seconds": r.mueller_s,
                     "brdf_dolp_seconds": r.brdf_dolp_s,
+                })
+            })
+            .collect();
+        let per_direction: Vec<_> = emission
+            .directions
+            .iter()
+            .map(|d| {
+                json!({
+                    "material": d.material,
+                    "sigma_deg": d.sigma_deg,
+                    "theta_deg": d.theta_deg,
+                    "nodes": d.nodes,
+                    "one_thread_ms": 1e3 * d.one_thread_s,
+                    "all_threads_ms": 1e3 * d.parallel_s,
+                    "eps0": d.eps.eps.0[0],
                 })
             })
             .collect();
@@ -317,6 +467,19 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "single_eval_ns": {
                 "kernel": latency_kernel,
                 "reference": latency_reference,
+            },
+            "emission": {
+                "accuracy": "default (FacetRule::for_material), both routes",
+                "threads": threads,
+                "per_direction": per_direction,
+                "table_90": {
+                    "material": EMISSION_MATERIALS[0],
+                    "theta_deg": "0..89",
+                    "one_thread_ms": 1e3 * emission.table_one_thread_s,
+                    "all_threads_ms": 1e3 * emission.table_parallel_s,
+                    "eps0_sum": emission.table_eps0_sum,
+                },
+                "same_for_all_thread_counts": emission.consistent,
             },
             "checksum": {
                 "brdf_sum": runs[0].brdf_sum,
@@ -382,6 +545,52 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         println!(
             "single evaluation: {latency_kernel:.1} ns (kernel, Kernel::pbrdf), \
              {latency_reference:.1} ns (one-geometry path, Material::evaluate)"
+        );
+        println!();
+        println!(
+            "emission (default accuracy, both routes of Kirchhoff's law): one `emissivity` call, \
+             ms (medians)"
+        );
+        // The parallel column only when it is a different pool.
+        let parallel_col = |ms: String| if threads == 1 { String::new() } else { ms };
+        println!(
+            "{:<15} {:>5} {:>5} {:>7} {:>10}{} {:>9}",
+            "material",
+            "σ",
+            "θ",
+            "nodes",
+            "1 thread",
+            parallel_col(format!(" {:>10}", format!("{threads} threads"))),
+            "ε0"
+        );
+        for d in &emission.directions {
+            println!(
+                "{:<15} {:>4.0}° {:>4.0}° {:>7} {:>10.3}{} {:>9.6}",
+                d.material,
+                d.sigma_deg,
+                d.theta_deg,
+                d.nodes,
+                1e3 * d.one_thread_s,
+                parallel_col(format!(" {:>10.3}", 1e3 * d.parallel_s)),
+                d.eps.eps.0[0]
+            );
+        }
+        println!(
+            "90-angle table of `{}` (θ = 0°…89°, `emissivities`): {:.1} ms on 1 thread{}; \
+             Σ ε0 = {:.12e}{}",
+            EMISSION_MATERIALS[0],
+            1e3 * emission.table_one_thread_s,
+            parallel_col(format!(
+                ", {:.1} ms on {threads} threads",
+                1e3 * emission.table_parallel_s
+            )),
+            emission.table_eps0_sum,
+            match (threads, emission.consistent) {
+                (1, true) => " (a single call gives the same ε)",
+                (_, true) => " (identical for every thread count)",
+                (1, false) => " (DIFFERS from a single call)",
+                (_, false) => " (DIFFERS between thread counts)",
+            }
         );
         println!(
             "checksum: Σ brdf = {:.12e}, Σ dolp = {:.12e}, Σ F = {:.12e}{}",

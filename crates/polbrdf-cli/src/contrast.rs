@@ -9,8 +9,9 @@ use crate::map::{
 };
 use crate::spectrum::{describe, load_spec, materials_at};
 use polbrdf::analysis::contrast::{
-    Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
+    polarization_null, Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
+use polbrdf::analysis::scene::Observer;
 use polbrdf::Stokes;
 use polbrdf_plot::{
     nice_ceil, ColorScale, Colormap, MarkShape, PolarFigure, PolarMark, PolarPanel,
@@ -18,15 +19,27 @@ use polbrdf_plot::{
 use serde_json::{json, Value};
 use std::path::PathBuf;
 
+/// The polarization-null directions `(θ_r, φ_r)` in degrees of the target and of the background.
+type NullLoci = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+
 /// `polbrdf contrast`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Target material: a TOML file, or a preset name (see `polbrdf materials`).
+    /// Target material: a TOML file, or a preset name (see `polbrdf materials`). With
+    /// --scene, overrides the scene's [target] material.
     #[arg(long, value_name = "FILE.toml|PRESET")]
-    pub target: String,
-    /// Background material: a TOML file, or a preset name.
+    pub target: Option<String>,
+    /// Background material: a TOML file, or a preset name. With --scene, overrides the
+    /// scene's [background] material.
     #[arg(long, value_name = "FILE.toml|PRESET")]
-    pub background: String,
+    pub background: Option<String>,
+    /// A scene file (TOML: wavelength or band, sky, atmosphere, [target] and [background]
+    /// materials and temperatures; see the README): target and background compared by their
+    /// observed Stokes radiances — thermal emission and sky included — instead of under one
+    /// collimated source.
+    #[arg(long, value_name = "SCENE.toml",
+          conflicts_with_all = ["sun_zenith_deg", "sun_azimuth_deg", "stokes", "wavelength_um", "band", "band_step_um"])]
+    pub scene: Option<PathBuf>,
     #[command(flatten)]
     pub view: ViewArgs,
     /// What the best directions are ranked by: |ΔDoLP|, or the polarization contrast
@@ -92,67 +105,206 @@ impl Args {
     }
 }
 
+/// A material from the command line (`--target`) or else from the scene file's table.
+fn material_of(
+    arg: &Option<String>,
+    option: &str,
+    from_scene: Option<&polbrdf_io::SceneObject>,
+) -> Result<(polbrdf::MaterialSpec, String, String), CliError> {
+    if let Some(a) = arg {
+        let (spec, name) = load_spec(a, option)?;
+        return Ok((spec, name, a.clone()));
+    }
+    match from_scene.and_then(|o| o.material.clone()) {
+        Some((spec, name)) => Ok((spec, name.clone(), name)),
+        None => Err(CliError::Usage(format!(
+            "{option} is required{}",
+            if from_scene.is_some() {
+                format!(
+                    " (or a `material` in the scene's [{}] table)",
+                    option.trim_start_matches("--")
+                )
+            } else {
+                String::new()
+            }
+        ))),
+    }
+}
+
 /// Runs `polbrdf contrast`.
 pub fn run(args: &Args) -> Result<(), CliError> {
     // Everything is validated before anything is computed or written.
-    let (light, grid) = args.view.build()?;
     let opts = args.rank_options()?;
-    let spectrum = args.view.spectral.spectrum()?;
-    let (target, t_name) = load_spec(&args.target, "--target")?;
-    let (background, b_name) = load_spec(&args.background, "--background")?;
-    let nodes = materials_at(
-        &[
-            (&target, "--target", &args.target),
-            (&background, "--background", &args.background),
-        ],
-        &spectrum,
-    )?;
-    let spectral_json = crate::spectrum::to_json(&spectrum, nodes.len());
-
     let started = std::time::Instant::now();
-    let problem = Contrast::spectral(
-        nodes
-            .into_iter()
-            .map(|(w, mut ms)| {
-                let b = ms.remove(1);
-                (w, ms.remove(0), b)
-            })
-            .collect(),
-        light,
-    );
+    let (problem, grid, setting, names, materials) = match &args.scene {
+        Some(path) => {
+            let grid = args.view.grid()?;
+            let scene = polbrdf_io::read_scene(path)?;
+            let (target, t_name, t_arg) =
+                material_of(&args.target, "--target", Some(&scene.target))?;
+            let (background, b_name, b_arg) =
+                material_of(&args.background, "--background", Some(&scene.background))?;
+            // Errors name the option, or the scene's table the material came from.
+            let what = |arg: &Option<String>, option: &str, table: &str| match arg {
+                Some(a) => format!("{option} {a}"),
+                None => format!("{}: [{table}] material", path.display()),
+            };
+            let observer = |spec: &polbrdf::MaterialSpec, t: Option<f64>, what: String| {
+                Observer::new(
+                    spec,
+                    &scene.thermal.with_surface_temperature(t),
+                    &scene.spectrum,
+                )
+                .map_err(|e| crate::radiance::observer_error(&what, &e, &scene.spectrum))
+            };
+            // Valid but easy to get wrong: say so on standard error.
+            for (table, t) in [
+                ("target", scene.target.temperature_k),
+                ("background", scene.background.temperature_k),
+            ] {
+                if t.is_none() {
+                    eprintln!(
+                        "polbrdf contrast: note: {}: [{table}] has no temperature_k, so the \
+                         {table} emits nothing (it only reflects the sky)",
+                        path.display()
+                    );
+                }
+            }
+            if scene.thermal.surface_temperature_k.is_some() {
+                eprintln!(
+                    "polbrdf contrast: note: {}: [surface] is for `polbrdf radiance`; contrast \
+                     uses the temperatures of [target] and [background]",
+                    path.display()
+                );
+            }
+            let problem = Contrast::scene(
+                observer(
+                    &target,
+                    scene.target.temperature_k,
+                    what(&args.target, "--target", "target"),
+                )?,
+                observer(
+                    &background,
+                    scene.background.temperature_k,
+                    what(&args.background, "--background", "background"),
+                )?,
+            );
+            let setting = Setting::Scene(Box::new(scene));
+            (problem, grid, setting, (t_name, b_name), (t_arg, b_arg))
+        }
+        None => {
+            let (light, grid) = args.view.build()?;
+            let spectrum = args.view.spectral.spectrum()?;
+            let (target, t_name, t_arg) = material_of(&args.target, "--target", None)?;
+            let (background, b_name, b_arg) = material_of(&args.background, "--background", None)?;
+            let nodes = materials_at(
+                &[
+                    (&target, "--target", &t_arg),
+                    (&background, "--background", &b_arg),
+                ],
+                &spectrum,
+            )?;
+            let spectral_json = crate::spectrum::to_json(&spectrum, nodes.len());
+            let problem = Contrast::spectral(
+                nodes
+                    .into_iter()
+                    .map(|(w, mut ms)| {
+                        let b = ms.remove(1);
+                        (w, ms.remove(0), b)
+                    })
+                    .collect(),
+                light,
+            );
+            let setting = Setting::Collimated {
+                light,
+                spectrum,
+                spectral_json,
+            };
+            (problem, grid, setting, (t_name, b_name), (t_arg, b_arg))
+        }
+    };
     let map = problem.map(&grid);
     let top = problem.rank(&map, &opts);
     let elapsed = started.elapsed();
-
+    let (t_name, b_name) = &names;
     let names = (t_name.as_str(), b_name.as_str());
+    let scene = matches!(setting, Setting::Scene(_));
+    let nulls = scene.then(|| {
+        (
+            polarization_null(&map, true),
+            polarization_null(&map, false),
+        )
+    });
     let mut files = vec![
-        ("contrast.csv".to_string(), contrast_csv(&map)),
+        ("contrast.csv".to_string(), contrast_csv(&map, scene)),
         (
             "best.json".to_string(),
-            best_json(args, &light, &map, &top, &opts, names, spectral_json),
+            best_json(
+                args,
+                &setting,
+                &map,
+                &top,
+                &opts,
+                names,
+                &materials,
+                nulls.as_ref(),
+            ),
         ),
     ];
-    figures(&mut files, &map, &top, &opts, &problem, names)?;
+    figures(
+        &mut files,
+        &map,
+        &top,
+        &opts,
+        &problem,
+        names,
+        nulls.as_ref(),
+    )?;
     let paths = write_all(&args.out, &files)?;
 
     let score_name = match opts.by {
         Ranking::DeltaDolp => "|ΔDoLP|",
         Ranking::PolarizationContrast => "polarization contrast |ΔS_lin|/mean S0",
     };
+    let lighting = match &setting {
+        Setting::Collimated {
+            light, spectrum, ..
+        } => format!(
+            "{}; sun at θi = {}°, φi = {}°",
+            describe(&Some(spectrum.clone()).flatten()),
+            short(light.theta_i().to_degrees()),
+            short(light.phi_i().to_degrees())
+        ),
+        Setting::Scene(s) => format!("; scene {}", s.path.display()),
+    };
     println!(
-        "polbrdf contrast: target {t_name}, background {b_name}{}; sun at θi = {}°, φi = {}°; \
-         {} viewing directions in {:.0} ms",
-        describe(&spectrum),
-        short(args.view.sun_zenith_deg),
-        short(args.view.sun_azimuth_deg),
+        "polbrdf contrast: target {t_name}, background {b_name}{lighting}; {} viewing directions \
+         in {:.0} ms",
         grid.len(),
         elapsed.as_secs_f64() * 1e3
     );
+    if let (Setting::Scene(s), Some((nt, nb))) = (&setting, &nulls) {
+        let t = polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum);
+        println!(
+            "  polarization null: {} direction(s) on the target's map, {} on the background's{}",
+            nt.len(),
+            nb.len(),
+            t.map_or(String::new(), |t| format!(
+                "; under this uniform sky both lose their polarization everywhere at {t:.2} K"
+            ))
+        );
+    }
     println!(
-        "  best directions by {score_name} (θr ≤ {}°, at least {}° apart{}):",
+        "  best directions by {score_name} (θr ≤ {}°, at least {}° apart{}){}:",
         short(args.max_zenith_deg),
         short(args.min_separation_deg),
-        if opts.refine { ", refined" } else { "" }
+        if opts.refine { ", refined" } else { "" },
+        if problem.is_azimuth_independent() {
+            "; the scene is symmetric about the surface normal, so each is a ring of view \
+             directions at every azimuth, listed at φr = 0"
+        } else {
+            ""
+        }
     );
     println!(
         "  {:>3} {:>8} {:>8} {:>11} {:>11} {:>8} {:>9} {:>9}",
@@ -173,6 +325,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     }
     println!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
+}
+
+/// Where target and background are compared: under one collimated source, or in a scene.
+enum Setting {
+    Collimated {
+        light: Illumination,
+        spectrum: Option<polbrdf::Spectrum>,
+        spectral_json: Value,
+    },
+    Scene(Box<polbrdf_io::Scene>),
 }
 
 fn score_label(by: Ranking) -> &'static str {
@@ -214,8 +376,26 @@ fn row(s: &ContrastSample) -> Vec<f64> {
     ]
 }
 
-fn contrast_csv(map: &ContrastMap) -> Vec<u8> {
-    csv(&COLUMNS, map.samples.iter().map(row))
+/// `contrast.csv`: the columns of [`COLUMNS`], and in a scene `radiance_difference`
+/// (S0 of the target − S0 of the background) as well.
+fn contrast_csv(map: &ContrastMap, scene: bool) -> Vec<u8> {
+    if scene {
+        let header: Vec<&str> = COLUMNS
+            .iter()
+            .copied()
+            .chain(["radiance_difference"])
+            .collect();
+        csv(
+            &header,
+            map.samples.iter().map(|s| {
+                let mut r = row(s);
+                r.push(s.radiance_difference());
+                r
+            }),
+        )
+    } else {
+        csv(&COLUMNS, map.samples.iter().map(row))
+    }
 }
 
 /// A number for JSON: `null` when not finite (e.g. an infinite intensity ratio).
@@ -231,17 +411,20 @@ fn entry(s: &ContrastSample) -> Value {
     Value::Object(m)
 }
 
+#[allow(clippy::too_many_arguments)]
 fn best_json(
     args: &Args,
-    light: &Illumination,
+    setting: &Setting,
     map: &ContrastMap,
     top: &[ContrastSample],
     opts: &RankOptions,
     (t_name, b_name): (&str, &str),
-    spectrum: Value,
+    (t_arg, b_arg): &(String, String),
+    nulls: Option<&NullLoci>,
 ) -> Vec<u8> {
-    let stokes = light.stokes();
-    let doc = json!({
+    // Every sky of a scene is azimuth-independent (`Contrast::is_azimuth_independent`).
+    let azimuth_independent = matches!(setting, Setting::Scene(_));
+    let mut doc = json!({
         "best": top.first().map(entry),
         "top": top.iter().map(entry).collect::<Vec<_>>(),
         "ranking": {
@@ -249,21 +432,64 @@ fn best_json(
             "min_separation_deg": num(args.min_separation_deg),
             "max_zenith_deg": num(args.max_zenith_deg),
             "refined": opts.refine,
+            "azimuth_independent": azimuth_independent,
         },
-        "target": {"material": args.target, "name": t_name},
-        "background": {"material": args.background, "name": b_name},
-        "illumination": {
-            "sun_zenith_deg": num(args.view.sun_zenith_deg),
-            "sun_azimuth_deg": num(args.view.sun_azimuth_deg),
-            "stokes_normalized": stokes.0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-        },
-        "spectrum": spectrum,
+        "target": {"material": t_arg, "name": t_name},
+        "background": {"material": b_arg, "name": b_name},
         "grid": {
             "theta_step_deg": num(deg(map.grid.theta_step())),
             "phi_step_deg": num(deg(map.grid.phi_step())),
             "directions": map.grid.len(),
         },
     });
+    match setting {
+        Setting::Collimated {
+            light,
+            spectral_json,
+            ..
+        } => {
+            doc["illumination"] = json!({
+                "sun_zenith_deg": num(light.theta_i().to_degrees()),
+                "sun_azimuth_deg": num(light.phi_i().to_degrees()),
+                "stokes_normalized": light.stokes().0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+            });
+            doc["spectrum"] = spectral_json.clone();
+        }
+        Setting::Scene(s) => {
+            let nodes = s.spectrum.integral_nodes(&[]).len();
+            let null_t = polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum);
+            let locus = |v: &[(f64, f64)]| -> Vec<Value> {
+                v.iter()
+                    .map(|(t, p)| json!([num(deg(*t)), num(deg(*p))]))
+                    .collect()
+            };
+            doc["scene"] = json!({
+                "file": s.path.display().to_string(),
+                "target_temperature_k": s.target.temperature_k,
+                "background_temperature_k": s.background.temperature_k,
+                "sky": sky_json(&s.thermal.sky),
+                "transmittance": num(s.thermal.atmosphere.transmittance),
+                "path_radiance": num(s.thermal.atmosphere.path_radiance),
+                "units": match s.spectrum {
+                    polbrdf::Spectrum::Wavelength(_) => "W·m⁻²·sr⁻¹·µm⁻¹ (spectral radiance)",
+                    polbrdf::Spectrum::Band(..) => "W·m⁻²·sr⁻¹ (band-integrated radiance)",
+                },
+            });
+            doc["spectrum"] = crate::spectrum::to_json(&Some(s.spectrum.clone()), nodes);
+            if doc["spectrum"].get("integrated").is_some() {
+                doc["spectrum"]["integrated"] =
+                    json!("Stokes radiance, integral of response × radiance over the band");
+            }
+            if let Some((nt, nb)) = nulls {
+                doc["polarization_null"] = json!({
+                    "what": "view directions (theta_r_deg, phi_r_deg) where S1 changes sign: the emitted and reflected polarizations cancel",
+                    "target": locus(nt),
+                    "background": locus(nb),
+                    "uniform_sky_null_temperature_k": null_t.map(num),
+                });
+            }
+        }
+    }
     let mut text = serde_json::to_string_pretty(&doc).expect("JSON of numbers and strings");
     text.push('\n');
     text.into_bytes()
@@ -298,20 +524,24 @@ fn figures(
     opts: &RankOptions,
     problem: &Contrast,
     (t_name, b_name): (&str, &str),
+    nulls: Option<&NullLoci>,
 ) -> Result<(), CliError> {
     let grid = &map.grid;
     let values =
         |f: fn(&ContrastSample) -> f64| -> Vec<f64> { map.samples.iter().map(f).collect() };
-    let light = light_marks(&problem.light());
+    let light = problem.light().map_or_else(Vec::new, |l| light_marks(&l));
     let ranked: Vec<PolarMark> = light
         .iter()
         .cloned()
         .chain(ranked_marks(top, opts.by))
         .collect();
-    let input = if problem.light().stokes() == Stokes::unpolarized() {
+    let input = if problem
+        .light()
+        .is_none_or(|l| l.stokes() == Stokes::unpolarized())
+    {
         String::new()
     } else {
-        let s = problem.light().stokes().0;
+        let s = problem.light().expect("collimated").stokes().0;
         format!(
             " (input S = {}, {}, {}, {})",
             short(s[0]),
@@ -320,24 +550,68 @@ fn figures(
             short(s[3])
         )
     };
+    // Colour limits from the directions that are ranked (θr ≤ --max-zenith-deg): toward
+    // grazing, values (and, for some parameter sets, unphysical ones) would set the scale of
+    // the whole map; beyond, the colours saturate. `v` is aligned with the map's samples.
     let max_abs = |v: &[f64]| {
         v.iter()
-            .copied()
+            .zip(&map.samples)
+            .filter(|(_, s)| s.theta_r <= opts.max_zenith * (1.0 + 1e-12))
+            .map(|(x, _)| *x)
             .filter(|x| x.is_finite())
             .fold(0.0, |m: f64, x| m.max(x.abs()))
     };
 
+    // The polarization null of each surface (in a scene): a dotted locus on its DoLP map.
+    let null_marks = |v: &[(f64, f64)]| -> Vec<PolarMark> {
+        v.iter()
+            .enumerate()
+            .map(|(k, (t, p))| PolarMark {
+                theta_deg: deg(*t),
+                phi_deg: deg(*p),
+                shape: MarkShape::Dot,
+                label: String::new(),
+                legend: if k == 0 {
+                    "polarization null".into()
+                } else {
+                    String::new()
+                },
+            })
+            .collect()
+    };
+    let (null_t, null_b) = nulls.map_or((Vec::new(), Vec::new()), |(t, b)| {
+        (null_marks(t), null_marks(b))
+    });
+    // In a scene (thermal emission: DoLP of a few per cent) both DoLP maps share a scale from
+    // 0 to the larger of their maxima over the ranked directions, when that is below 0.5.
+    let (dt_values, db_values) = (
+        values(ContrastSample::dolp_target),
+        values(ContrastSample::dolp_background),
+    );
+    let dolp_top = max_abs(&dt_values).max(max_abs(&db_values));
+    let dolp_scale = || {
+        if nulls.is_some() && dolp_top < 0.5 {
+            ColorScale::linear(
+                Colormap::Viridis,
+                0.0,
+                nice_ceil(dolp_top.max(1e-3)),
+                "DoLP",
+            )
+        } else {
+            dolp_scale()
+        }
+    };
     let dolp_t = PolarPanel {
         title: format!("DoLP — target: {t_name}{input}"),
-        grid: polar_grid(grid, values(ContrastSample::dolp_target))?,
+        grid: polar_grid(grid, dt_values)?,
         scale: dolp_scale(),
-        marks: light.clone(),
+        marks: light.iter().cloned().chain(null_t).collect(),
     };
     let dolp_b = PolarPanel {
         title: format!("DoLP — background: {b_name}"),
-        grid: polar_grid(grid, values(ContrastSample::dolp_background))?,
+        grid: polar_grid(grid, db_values)?,
         scale: dolp_scale(),
-        marks: light.clone(),
+        marks: light.iter().cloned().chain(null_b).collect(),
     };
     let delta = values(ContrastSample::delta_dolp);
     let lim = nice_ceil(max_abs(&delta).max(1e-3));
@@ -394,7 +668,7 @@ fn figures(
         marks: if opts.by == Ranking::PolarizationContrast {
             ranked
         } else {
-            light
+            light.clone()
         },
     };
 
@@ -407,16 +681,43 @@ fn figures(
         columns: 3,
         panels: vec![dolp_t.clone(), dolp_b.clone(), third],
     };
-    render_all(
-        files,
-        &[
-            ("dolp_target", single(dolp_t)),
-            ("dolp_background", single(dolp_b)),
-            ("delta_dolp", single(delta_dolp)),
-            ("intensity_ratio", single(ratio_panel)),
-            ("aolp_difference", single(aolp)),
-            ("polarization_contrast", single(pol_contrast)),
-            ("overview", overview),
-        ],
-    )
+    let mut list = vec![
+        ("dolp_target", single(dolp_t)),
+        ("dolp_background", single(dolp_b)),
+        ("delta_dolp", single(delta_dolp)),
+        ("intensity_ratio", single(ratio_panel)),
+        ("aolp_difference", single(aolp)),
+        ("polarization_contrast", single(pol_contrast)),
+        ("overview", overview),
+    ];
+    if nulls.is_some() {
+        let diff = values(ContrastSample::radiance_difference);
+        let lim = nice_ceil(max_abs(&diff).max(1e-30));
+        list.push((
+            "radiance_difference",
+            single(PolarPanel {
+                title: "Radiance difference S₀(target) − S₀(background)".into(),
+                grid: polar_grid(grid, diff)?,
+                scale: ColorScale::linear(Colormap::Diverging, -lim, lim, "ΔS₀"),
+                marks: light,
+            }),
+        ));
+    }
+    render_all(files, &list)
+}
+
+/// A scene's sky as JSON: its model and its parameters, as the scene file names them.
+fn sky_json(sky: &polbrdf::analysis::SkyModel) -> Value {
+    use polbrdf::analysis::SkyModel;
+    match sky {
+        SkyModel::None => json!({"model": "none"}),
+        SkyModel::Uniform { radiance } => json!({"model": "uniform", "radiance": num(*radiance)}),
+        SkyModel::Thermal { temperature_k } => {
+            json!({"model": "thermal", "temperature_k": num(*temperature_k)})
+        }
+        SkyModel::Profile(p) => {
+            let (z, l) = p.table();
+            json!({"model": "profile", "zenith_deg": z, "radiance": l})
+        }
+    }
 }

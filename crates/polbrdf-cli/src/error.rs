@@ -14,6 +14,9 @@ pub enum CliError {
     NotConverged(String),
     /// A command-line value is malformed or out of range (the message names the option).
     Invalid(String),
+    /// A required option is missing, or options that exclude each other are combined (what
+    /// clap cannot check by itself).
+    Usage(String),
     /// A figure could not be drawn (a bug: the figures are built from validated data).
     Plot(polbrdf_plot::Error),
 }
@@ -31,6 +34,7 @@ impl CliError {
             CliError::Reproduce(_) => 1,
             CliError::NotConverged(_) => 5,
             CliError::Invalid(_) => 3,
+            CliError::Usage(_) => 2,
             CliError::Plot(_) => 1,
         }
     }
@@ -45,7 +49,7 @@ impl std::fmt::Display for CliError {
             CliError::Fit(e) => write!(f, "fit: {e}"),
             CliError::CheckFailed => write!(f, "check: the parameter set is not physically valid everywhere (see above)"),
             CliError::Reproduce(e) => write!(f, "reproduce: {e}"),
-            CliError::Invalid(m) => write!(f, "{m}"),
+            CliError::Invalid(m) | CliError::Usage(m) => write!(f, "{m}"),
             CliError::Plot(e) => write!(f, "figure: {e}"),
             CliError::NotConverged(m) => write!(
                 f,

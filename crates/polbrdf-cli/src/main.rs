@@ -9,12 +9,14 @@ mod albedo;
 mod bench;
 mod check;
 mod contrast;
+mod emission;
 mod error;
 mod eval;
 mod fit;
 mod map;
 mod materials;
 mod output;
+mod radiance;
 mod reproduce;
 mod spectrum;
 mod sweep;
@@ -110,6 +112,18 @@ enum Command {
     /// Directional–hemispherical reflectance (albedo) at a set of incidence angles; values
     /// above 1 (energy created by the parameters) are flagged.
     Albedo(albedo::Args),
+    /// Polarized thermal emission by Kirchhoff's law: the emissivity Stokes vector at a set of
+    /// view zenith angles, by route A (the definition) and route B (reciprocity).
+    ///
+    /// Output CSV (standard output, or --output): theta_deg, eps0, eps1, eps2, eps3, eps_s,
+    /// eps_p, dolp, reciprocity_residual, valid.
+    Emission(emission::Args),
+    /// The observed Stokes radiance of a surface in a scene (thermal emission, reflected sky,
+    /// atmosphere) at a set of view directions.
+    ///
+    /// Output CSV (standard output, or --output): theta_r_deg, phi_r_deg, s0, s1, s2, s3, dolp,
+    /// aolp_deg — W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band.
+    Radiance(radiance::Args),
     /// Polar maps of the BRDF, DoLP and AoLP of one material over the viewing hemisphere.
     ///
     /// Writes into --out: map.csv (one row per viewing direction), brdf, dolp, aolp and
@@ -148,7 +162,14 @@ enum Command {
 
 fn main() -> ExitCode {
     // A panic is a bug: say so, and exit with the documented code 1 (not Rust's 101).
+    // Except a closed standard output (`polbrdf … | head`): `print!` panics on a broken pipe,
+    // and a reader that stopped reading is no bug; exit quietly, as Unix tools do (141 =
+    // 128 + SIGPIPE).
     std::panic::set_hook(Box::new(|info| {
+        let message = info.to_string();
+        if message.contains("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
+        }
         eprintln!("polbrdf: internal error (a bug, please report it): {info}");
         std::process::exit(1);
     }));
@@ -208,6 +229,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Materials { show } => materials::run(show.as_deref()),
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),
+        Command::Emission(args) => emission::run(&args),
+        Command::Radiance(args) => radiance::run(&args),
         Command::Map(args) => map::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Spectrum(args) => sweep::run(&args),

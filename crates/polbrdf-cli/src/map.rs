@@ -19,9 +19,10 @@ pub const PANEL: (u32, u32) = (620, 580);
 /// Illumination and viewing grid, shared by `map` and `contrast`.
 #[derive(clap::Args, Debug)]
 pub struct ViewArgs {
-    /// Zenith angle of the source (sun), degrees, in [0, 90).
+    /// Zenith angle of the source (sun), degrees, in [0, 90) (required, except for `contrast
+    /// --scene`).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
-    pub sun_zenith_deg: f64,
+    pub sun_zenith_deg: Option<f64>,
     /// Azimuth of the source, degrees (the specular direction is at azimuth + 180°).
     #[arg(
         long,
@@ -54,9 +55,19 @@ impl ViewArgs {
             Some(s) => parse_stokes(s)?,
             None => Stokes::unpolarized(),
         };
-        let light = Illumination::from_degrees(self.sun_zenith_deg, self.sun_azimuth_deg, stokes)?;
-        let grid = parse_grid(&self.grid_deg)?;
+        let Some(zenith) = self.sun_zenith_deg else {
+            return Err(CliError::Usage(
+                "--sun-zenith-deg is required (the zenith angle of the source, degrees)".into(),
+            ));
+        };
+        let light = Illumination::from_degrees(zenith, self.sun_azimuth_deg, stokes)?;
+        let grid = self.grid()?;
         Ok((light, grid))
+    }
+
+    /// The validated viewing grid.
+    pub fn grid(&self) -> Result<ViewGrid, CliError> {
+        parse_grid(&self.grid_deg)
     }
 }
 
@@ -233,7 +244,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .max_by(|a, b| a.stokes.dolp().total_cmp(&b.stokes.dolp()));
     println!(
         "polbrdf map: {name}, sun at θi = {}°, φi = {}°, {} viewing directions ({}° × {}°)",
-        short(args.view.sun_zenith_deg),
+        short(args.view.sun_zenith_deg.unwrap_or(f64::NAN)),
         short(args.view.sun_azimuth_deg),
         grid.len(),
         short(deg(grid.theta_step())),

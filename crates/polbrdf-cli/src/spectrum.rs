@@ -45,6 +45,10 @@ impl SpectralArgs {
             }
         }
         let band = polbrdf_io::read_band_csv(path)?;
+        if let Some(s) = self.band_step_um {
+            band.check_step(s)
+                .map_err(|e| CliError::Invalid(format!("--band-step-um: {e}")))?;
+        }
         Ok(Some(Spectrum::Band(band, self.band_step_um)))
     }
 }

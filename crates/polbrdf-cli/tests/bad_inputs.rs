@@ -150,6 +150,102 @@ fn eval_spectral(what: &'static str, csv: &str, code: i32, says: &[&'static str]
     )
 }
 
+/// A valid scene at one wavelength with a surface temperature (for the views cases).
+const SCENE: &str = "wavelength_um = 10\n[surface]\ntemperature_k = 300\n";
+const LWIR: &str = "wavelength_um,response\n8,1\n12,1\n";
+/// A band that no library index reaches.
+const FAR_BAND: &str = "wavelength_um,response\n500,1\n600,1\n";
+/// Target and background tables for `contrast --scene`.
+const OBJECTS: &str = "[target]\nmaterial = \"paint\"\n[background]\nmaterial = \"glass\"\n";
+
+/// `radiance` of the paint preset in a scene file `s.toml` holding `toml`, with `files`.
+fn radiance_scene(
+    what: &'static str,
+    toml: &str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let mut f = vec![("s.toml", t(toml))];
+    f.extend(files);
+    case(
+        what,
+        f,
+        &[
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            "{d}/s.toml",
+            "--theta-deg",
+            "0,40",
+            "--output",
+            "{d}/out.csv",
+        ],
+        code,
+        says,
+    )
+}
+
+/// `contrast --scene` on a scene file `s.toml` holding `toml`, with `files`.
+fn contrast_scene(
+    what: &'static str,
+    toml: &str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    extra: &[&'static str],
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let mut f = vec![("s.toml", t(toml))];
+    f.extend(files);
+    let mut args = vec![
+        "contrast",
+        "--scene",
+        "{d}/s.toml",
+        "--grid-deg",
+        "30,90",
+        "--no-refine",
+        "--out",
+        "{d}/out",
+    ];
+    args.extend_from_slice(extra);
+    case(what, f, &args, code, says)
+}
+
+/// `radiance` of the paint preset in a valid scene on a views file `v.csv` holding `csv`.
+fn radiance_views(what: &'static str, csv: &str, code: i32, says: &[&'static str]) -> Case {
+    case(
+        what,
+        vec![("s.toml", t(SCENE)), ("v.csv", t(csv))],
+        &[
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            "{d}/s.toml",
+            "--input",
+            "{d}/v.csv",
+            "--output",
+            "{d}/out.csv",
+        ],
+        code,
+        says,
+    )
+}
+
+/// `emission` of the paint preset with `extra` options and `files`.
+fn emission(
+    what: &'static str,
+    files: Vec<(&'static str, Vec<u8>)>,
+    extra: &[&'static str],
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let mut args = vec!["emission", "--material", "paint", "--output", "{d}/out.csv"];
+    args.extend_from_slice(extra);
+    case(what, files, &args, code, says)
+}
+
 fn table() -> Vec<Case> {
     let long_field = "7".repeat(100_000) + "x";
     vec![
@@ -248,6 +344,75 @@ fn table() -> Vec<Case> {
         case("map: negative sun zenith", vec![], &["map", "--material", "paint", "--sun-zenith-deg", "-5", "--out", "{d}/out"], 3, &["-5"]),
         case("albedo: incidence at 90", vec![], &["albedo", "--material", "paint", "--theta-i-deg", "90", "--output", "{d}/out.csv"], 3, &["90"]),
         case("reproduce: output is a file", vec![("out", t("x"))], &["reproduce", "--out", "{d}/out"], 4, &["out"]),
+        // Scene files: temperatures.
+        radiance_scene("surface temperature 0", "wavelength_um = 10\n[surface]\ntemperature_k = 0\n", vec![], 3, &["s.toml:3", "`surface.temperature_k`", "> 0 K"]),
+        radiance_scene("surface temperature negative", "wavelength_um = 10\n[surface]\ntemperature_k = -5\n", vec![], 3, &["s.toml:3", "`surface.temperature_k`", "-5"]),
+        radiance_scene("surface temperature NaN", "wavelength_um = 10\n[surface]\ntemperature_k = nan\n", vec![], 3, &["s.toml:3", "`surface.temperature_k`", "NaN"]),
+        radiance_scene("surface temperature a string", "wavelength_um = 10\n[surface]\ntemperature_k = \"hot\"\n", vec![], 3, &["s.toml:3", "`surface.temperature_k`", "expected a number"]),
+        contrast_scene("target temperature 0", "wavelength_um = 10\n[target]\nmaterial = \"paint\"\ntemperature_k = 0\n[background]\nmaterial = \"glass\"\n", vec![], &[], 3, &["s.toml:4", "`target.temperature_k`", "> 0 K"]),
+        contrast_scene("background temperature negative", "wavelength_um = 10\n[target]\nmaterial = \"paint\"\n[background]\nmaterial = \"glass\"\ntemperature_k = -5\n", vec![], &[], 3, &["s.toml:6", "`background.temperature_k`", "-5"]),
+        radiance_scene("sky temperature 0", "wavelength_um = 10\n[sky]\nmodel = \"thermal\"\ntemperature_k = 0\n", vec![], 3, &["s.toml:4", "`sky.temperature_k`", "> 0 K"]),
+        radiance_scene("sky temperature negative", "wavelength_um = 10\n[sky]\nmodel = \"thermal\"\ntemperature_k = -5\n", vec![], 3, &["s.toml:4", "`sky.temperature_k`", "-5"]),
+        // Scene files: the spectrum.
+        radiance_scene("scene wavelength 0", "wavelength_um = 0\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "> 0"]),
+        radiance_scene("scene wavelength negative", "wavelength_um = -3\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "-3"]),
+        radiance_scene("scene wavelength and band", "wavelength_um = 10\n[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:1", "`wavelength_um`", "[band]", "line 2", "not both"]),
+        radiance_scene("scene without spectrum", "[surface]\ntemperature_k = 300\n", vec![], 3, &["s.toml", "no spectrum", "wavelength_um", "[band]"]),
+        radiance_scene("band without response", "[band]\nstep_um = 0.1\n", vec![], 3, &["s.toml:1", "`band`", "response"]),
+        radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
+        radiance_scene("band step 0", "[band]\nresponse = \"b.csv\"\nstep_um = 0\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "> 0"]),
+        radiance_scene("scene band file missing", "[band]\nresponse = \"nob.csv\"\n", vec![], 3, &["s.toml:2", "`band.response`", "nob.csv", "cannot read"]),
+        radiance_scene("scene band file malformed", "[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t("wavelength_um,response\n8,1\n12,lots\n"))], 3, &["s.toml:2", "`band.response`", "b.csv:3", "`response`", "lots"]),
+        case("band out of a spectral material's data (radiance)", vec![("s.toml", t("[band]\nresponse = \"far.csv\"\n[surface]\ntemperature_k = 300\n")), ("far.csv", t(FAR_BAND)), ("m.toml", t(SPECTRAL))],
+            &["radiance", "--material", "{d}/m.toml", "--scene", "{d}/s.toml", "--output", "{d}/out.csv"], 3, &["--material", "m.toml", "far.csv", "500–600 µm", "Au/Johnson", "1.937"]),
+        contrast_scene("band out of a scene target's data", "[band]\nresponse = \"far.csv\"\n[target]\nmaterial = \"m.toml\"\n[background]\nmaterial = \"paint\"\n", vec![("far.csv", t(FAR_BAND)), ("m.toml", t(SPECTRAL))], &[], 3, &["s.toml", "[target] material", "far.csv", "Au/Johnson", "1.937"]),
+        contrast_scene("wavelength out of a scene target's data", "wavelength_um = 10\n[target]\nmaterial = \"m.toml\"\n[background]\nmaterial = \"paint\"\n", vec![("m.toml", t(SPECTRAL))], &[], 3, &["s.toml", "[target] material", "10 µm", "Au/Johnson"]),
+        // Scene files: keys, tables, sky models, atmosphere, files.
+        radiance_scene("scene unknown key", "wavelength_um = 10\ncolour = 3\n", vec![], 3, &["s.toml:2", "`colour`", "unknown key"]),
+        radiance_scene("scene unknown key in a table", "wavelength_um = 10\n[sky]\ncolour = 3\n", vec![], 3, &["s.toml:3", "`sky.colour`", "unknown key in [sky]", "model"]),
+        radiance_scene("scene unknown table", "wavelength_um = 10\n[sun]\nzenith_deg = 30\n", vec![], 3, &["s.toml:2", "unknown table [sun]", "[sky]"]),
+        radiance_scene("scene dotted key", "wavelength_um = 10\nsky.model = \"uniform\"\n", vec![], 3, &["s.toml:2", "dotted keys"]),
+        radiance_scene("unknown sky model", "wavelength_um = 10\n[sky]\nmodel = \"cloudy\"\n", vec![], 3, &["s.toml:3", "`sky.model`", "cloudy", "\"thermal\""]),
+        radiance_scene("key of another sky model", "wavelength_um = 10\n[sky]\nmodel = \"thermal\"\ntemperature_k = 250\nradiance = 3\n", vec![], 3, &["s.toml:5", "`sky.radiance`", "not a key of sky model \"thermal\"", "model = \"uniform\""]),
+        radiance_scene("sky key without a model", "wavelength_um = 10\n[sky]\ntemperature_k = 250\n", vec![], 3, &["s.toml:3", "`sky.temperature_k`", "\"none\"", "the default", "model = \"thermal\""]),
+        radiance_scene("thermal sky without temperature", "wavelength_um = 10\n[sky]\nmodel = \"thermal\"\n", vec![], 3, &["s.toml:3", "`sky.model`", "requires the key `temperature_k`"]),
+        radiance_scene("uniform sky without radiance", "wavelength_um = 10\n[sky]\nmodel = \"uniform\"\n", vec![], 3, &["s.toml:3", "requires the key `radiance`"]),
+        radiance_scene("transmittance above 1", "wavelength_um = 10\n[atmosphere]\ntransmittance = 1.5\n", vec![], 3, &["s.toml:3", "`atmosphere.transmittance`", "1.5", "[0, 1]"]),
+        radiance_scene("negative path radiance", "wavelength_um = 10\n[atmosphere]\npath_radiance = -1\n", vec![], 3, &["s.toml:3", "`atmosphere.path_radiance`", "-1", ">= 0"]),
+        radiance_scene("sky profile file missing", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"nosky.csv\"\n", vec![], 3, &["s.toml:4", "`sky.file`", "nosky.csv", "cannot read"]),
+        radiance_scene("sky profile malformed", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("zenith_deg,radiance\n0,1\n45,x\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`radiance`"]),
+        case("scene file missing", vec![], &["radiance", "--material", "paint", "--scene", "{d}/none.toml", "--output", "{d}/out.csv"], 4, &["none.toml", "cannot read"]),
+        case("paper form in a scene", vec![("s.toml", t(SCENE)), ("m.toml", t("n = 1.5\nsigma_deg = 10\nform = \"paper\"\n"))],
+            &["radiance", "--material", "{d}/m.toml", "--scene", "{d}/s.toml", "--output", "{d}/out.csv"], 3, &["--material", "m.toml", "`paper` form", "standard"]),
+        radiance_scene("band scene with sky, atmosphere and negative azimuths (valid)", "[band]\nresponse = \"b.csv\"\n[surface]\ntemperature_k = 300\n[sky]\nmodel = \"thermal\"\ntemperature_k = 250\n[atmosphere]\ntransmittance = 0.9\n", vec![("b.csv", t(LWIR))], 0, &[]),
+        // Views files.
+        radiance_views("views: missing column", "theta_r_deg,phi\n30,0\n", 3, &["v.csv", "missing column", "phi_r_deg"]),
+        radiance_views("views: zenith 95", "theta_r_deg,phi_r_deg\n30,0\n95,0\n", 3, &["v.csv:3", "`theta_r_deg`", "95", "[0, 90)"]),
+        radiance_views("views: text at line 3", "theta_r_deg,phi_r_deg\n30,0\n40,east\n", 3, &["v.csv:3", "`phi_r_deg`", "east"]),
+        radiance_views("views: NaN zenith", "phi_r_deg,theta_r_deg\n0,nan\n", 3, &["v.csv:2", "`theta_r_deg`", "NaN"]),
+        radiance_views("views: header only", "theta_r_deg,phi_r_deg\n", 3, &["v.csv", "no view directions"]),
+        radiance_views("views: empty file", "", 3, &["v.csv", "empty"]),
+        radiance_views("views: reordered, extra column, CRLF (valid)", "label,phi_r_deg,theta_r_deg\r\nx,-30,10\r\n", 0, &[]),
+        // emission and radiance options.
+        emission("emission: zenith 90", vec![], &["--theta-deg", "90"], 3, &["--theta-deg", "90", "[0, 90)"]),
+        emission("emission: zenith -1", vec![], &["--theta-deg", "-1"], 3, &["--theta-deg", "-1", "[0, 90)"]),
+        emission("emission: zenith -1 in a list", vec![], &["--theta-deg", "5,-1"], 3, &["--theta-deg", "-1"]),
+        emission("emission: temperature 0", vec![("b.csv", t(LWIR))], &["--band", "{d}/b.csv", "--temperature-k", "0"], 3, &["--temperature-k", "0", "> 0 K"]),
+        emission("emission: temperature without band", vec![], &["--temperature-k", "300"], 2, &["--band"]),
+        emission("emission: no radiance over the band", vec![("b.csv", t(LWIR))], &["--band", "{d}/b.csv", "--temperature-k", "1"], 3, &["--temperature-k", "no radiance"]),
+        case("emission: paper form", vec![("m.toml", t("n = 1.5\nsigma_deg = 10\nform = \"paper\"\n"))], &["emission", "--material", "{d}/m.toml", "--output", "{d}/out.csv"], 3, &["m.toml", "`paper` form"]),
+        case("emission: spectral material without wavelength", vec![("m.toml", t(SPECTRAL))], &["emission", "--material", "{d}/m.toml", "--output", "{d}/out.csv"], 3, &["--material", "--wavelength-um", "--band"]),
+        case("radiance: zenith 90", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--theta-deg", "90", "--output", "{d}/out.csv"], 3, &["--theta-deg", "90", "[0, 90)"]),
+        case("radiance: infinite azimuth", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--phi-deg", "inf", "--output", "{d}/out.csv"], 3, &["--phi-deg", "finite"]),
+        case("radiance: views file and angles", vec![("s.toml", t(SCENE)), ("v.csv", t("theta_r_deg,phi_r_deg\n30,0\n"))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--input", "{d}/v.csv", "--theta-deg", "30", "--output", "{d}/out.csv"], 2, &["--input", "--theta-deg"]),
+        case("radiance: negative azimuths in a list (valid)", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--phi-deg", "-30,-90", "--output", "{d}/out.csv"], 0, &[]),
+        // contrast --scene.
+        contrast_scene("scene contrast without target material", "wavelength_um = 10\n[background]\nmaterial = \"paint\"\n", vec![], &[], 2, &["--target is required", "[target]"]),
+        contrast_scene("scene contrast without background material", "wavelength_um = 10\n[target]\nmaterial = \"paint\"\ntemperature_k = 300\n", vec![], &[], 2, &["--background is required", "[background]"]),
+        contrast_scene("scene target material unknown", "wavelength_um = 10\n[target]\nmaterial = \"nope\"\n[background]\nmaterial = \"paint\"\n", vec![], &[], 3, &["s.toml:3", "`target.material`", "nope", "paint"]),
+        contrast_scene("scene and sun", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--sun-zenith-deg", "30"], 2, &["--scene", "--sun-zenith-deg"]),
+        contrast_scene("scene and wavelength option", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--wavelength-um", "10"], 2, &["--scene", "--wavelength-um"]),
+        contrast_scene("scene contrast (valid)", &format!("wavelength_um = 10\n{OBJECTS}[sky]\nmodel = \"thermal\"\ntemperature_k = 250\n"), vec![], &[], 0, &[]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),

@@ -3,7 +3,7 @@
 use crate::common::{polbrdf, stderr};
 
 #[test]
-fn bench_reports_rates_latency_checksum_and_cpu_as_json() {
+fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
     let out = polbrdf(&[
         "bench",
         "--count",
@@ -29,6 +29,32 @@ fn bench_reports_rates_latency_checksum_and_cpu_as_json() {
     assert!(doc["single_eval_ns"]["reference"].as_f64().unwrap() > 0.0);
     assert!(doc["cpu"]["model"].as_str().is_some_and(|s| !s.is_empty()));
     assert!(doc["cpu"]["simd"].as_str().is_some());
+    let emission = &doc["emission"];
+    let positive = |v: &serde_json::Value, key: &str| {
+        let x = v[key].as_f64().unwrap_or_else(|| panic!("{key}: {v}"));
+        assert!(x.is_finite() && x > 0.0, "{key} = {x}");
+    };
+    let directions = emission["per_direction"].as_array().unwrap();
+    assert_eq!(directions.len(), 9, "three materials at θ = 0°, 45°, 80°");
+    for d in directions {
+        assert!(d["material"].as_str().is_some(), "{d}");
+        for key in [
+            "one_thread_ms",
+            "all_threads_ms",
+            "sigma_deg",
+            "nodes",
+            "eps0",
+        ] {
+            positive(d, key);
+        }
+        assert!(d["theta_deg"].as_f64().is_some(), "{d}");
+    }
+    let table = &emission["table_90"];
+    for key in ["one_thread_ms", "all_threads_ms", "eps0_sum"] {
+        positive(table, key);
+    }
+    assert_eq!(emission["threads"], 2);
+    assert_eq!(emission["same_for_all_thread_counts"], true);
     let checksum = &doc["checksum"];
     assert_eq!(checksum["same_for_all_thread_counts"], true);
     assert!(checksum["brdf_sum"].as_f64().unwrap() > 0.0);

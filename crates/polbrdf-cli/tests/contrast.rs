@@ -247,7 +247,14 @@ fn writes_maps_csv_and_best_json_that_agree() {
         wrong < 0.6,
         "the check can tell the columns apart: {wrong:.3}"
     );
-    let lim = polbrdf_plot::nice_ceil(delta.iter().fold(0.0f64, |m, d| m.max(d.abs())));
+    // The colour limits come from the ranked directions (θr ≤ --max-zenith-deg, default 80°).
+    let lim = polbrdf_plot::nice_ceil(
+        delta
+            .iter()
+            .zip(&theta)
+            .filter(|(_, t)| **t <= 80.0)
+            .fold(0.0f64, |m, (d, _)| m.max(d.abs())),
+    );
     let diverging = ColorScale::linear(Colormap::Diverging, -lim, lim, "ΔDoLP");
     let shown = fraction_shown(
         &out.join("delta_dolp.png"),

@@ -5,6 +5,7 @@ mod bad_inputs;
 mod bench;
 mod common;
 mod contrast;
+mod emission;
 mod eval;
 mod fit;
 mod golden;

@@ -313,6 +313,122 @@ pub fn parse_band_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::Band> {
     })
 }
 
+/// The columns of a sky profile file: the zenith angle of a sky point (degrees) and the sky's
+/// spectral radiance there (W·m⁻²·sr⁻¹·µm⁻¹).
+pub const SKY_PROFILE_COLUMNS: [&str; 2] = ["zenith_deg", "radiance"];
+
+/// Reads a sky profile file (CSV with columns `zenith_deg, radiance` in any order: an
+/// unpolarized sky's radiance by zenith angle, linear between the rows, zenith angles strictly
+/// increasing from 0° to 90°; [`polbrdf::analysis::sky::ZenithProfile`]).
+///
+/// # Errors
+/// [`Error::Field`] naming the file, the line and the column for a malformed or invalid value
+/// (a zenith angle outside [0°, 90°] or not above the previous one, a radiance that is not
+/// finite and ≥ 0); [`Error::File`] for a missing column, fewer than two rows, or a table that
+/// does not start at 0° and end at 90°.
+pub fn read_sky_profile_csv(path: &Path) -> Result<polbrdf::analysis::sky::ZenithProfile> {
+    parse_sky_profile_csv(&read_all(path)?, path)
+}
+
+/// Parses sky profile CSV bytes ([`read_sky_profile_csv`]); `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_sky_profile_csv`].
+pub fn parse_sky_profile_csv(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<polbrdf::analysis::sky::ZenithProfile> {
+    let RawTable {
+        rows, lines, index, ..
+    } = parse_table(bytes, path, &SKY_PROFILE_COLUMNS)?;
+    let mut zenith = Vec::with_capacity(rows.len());
+    let mut radiance = Vec::with_capacity(rows.len());
+    for (row, &line) in rows.iter().zip(&lines) {
+        zenith.push(parse_number(
+            path,
+            line,
+            SKY_PROFILE_COLUMNS[0],
+            &row[index[0]],
+        )?);
+        radiance.push(parse_number(
+            path,
+            line,
+            SKY_PROFILE_COLUMNS[1],
+            &row[index[1]],
+        )?);
+    }
+    polbrdf::analysis::sky::ZenithProfile::new(zenith, radiance).map_err(|e| match e {
+        polbrdf::Error::InvalidParameterAt { name, index, .. } => Error::Field {
+            path: path.to_path_buf(),
+            line: lines[index],
+            field: name.to_string(),
+            message: e.to_string(),
+        },
+        other => Error::File {
+            path: path.to_path_buf(),
+            message: other.to_string(),
+        },
+    })
+}
+
+/// The columns of a view-direction file: the view zenith and azimuth angles in degrees.
+pub const VIEW_COLUMNS: [&str; 2] = ["theta_r_deg", "phi_r_deg"];
+
+/// Reads a view-direction file (CSV with columns `theta_r_deg, phi_r_deg` in any order; other
+/// columns are ignored, so a geometry or result table can be reused) and returns the
+/// `(θ_r, φ_r)` pairs in degrees, in file order.
+///
+/// # Errors
+/// [`Error::Field`] naming the file, the line and the column for a value that is not a number,
+/// a view zenith angle outside [0°, 90°) or a non-finite azimuth; [`Error::File`] for a missing
+/// column or a file without rows.
+pub fn read_views_csv(path: &Path) -> Result<Vec<(f64, f64)>> {
+    parse_views_csv(&read_all(path)?, path)
+}
+
+/// Parses view-direction CSV bytes ([`read_views_csv`]); `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_views_csv`].
+pub fn parse_views_csv(bytes: &[u8], path: &Path) -> Result<Vec<(f64, f64)>> {
+    let RawTable {
+        rows, lines, index, ..
+    } = parse_table(bytes, path, &VIEW_COLUMNS)?;
+    if rows.is_empty() {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: "no view directions (the file has a header but no rows)".into(),
+        });
+    }
+    let field = |line: usize, column: &str, message: String| Error::Field {
+        path: path.to_path_buf(),
+        line,
+        field: column.to_string(),
+        message,
+    };
+    let mut views = Vec::with_capacity(rows.len());
+    for (row, &line) in rows.iter().zip(&lines) {
+        let theta = parse_number(path, line, VIEW_COLUMNS[0], &row[index[0]])?;
+        let phi = parse_number(path, line, VIEW_COLUMNS[1], &row[index[1]])?;
+        if !(0.0..90.0).contains(&theta) {
+            return Err(field(
+                line,
+                VIEW_COLUMNS[0],
+                format!("{theta}: the view zenith angle must lie in [0, 90) degrees"),
+            ));
+        }
+        if !phi.is_finite() {
+            return Err(field(
+                line,
+                VIEW_COLUMNS[1],
+                format!("{phi}: must be finite"),
+            ));
+        }
+        views.push((theta, phi));
+    }
+    Ok(views)
+}
+
 /// Shortest round-trip text of a finite `f64` (`-0.0` printed as `0.0`).
 pub fn fmt_f64(v: f64) -> String {
     format!("{:?}", v + 0.0)

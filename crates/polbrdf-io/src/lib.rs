@@ -1,6 +1,7 @@
 //! File formats of polbrdf: material files (flat TOML), geometry and result CSV, refractive-index
-//! files of the refractiveindex.info database (YAML) with a built-in library of them, and atomic
-//! output. Every error names the file, and where it applies the line and the field.
+//! files of the refractiveindex.info database (YAML) with a built-in library of them, scene files
+//! (TOML, with band and sky profile CSV), and atomic output. Every error names the file, and
+//! where it applies the line and the field.
 
 #![warn(missing_docs)]
 
@@ -10,10 +11,12 @@ pub mod library;
 pub mod material;
 pub mod measurements;
 pub mod refractive;
+pub mod scene;
 pub mod write;
 
 pub use csv_io::{
-    parse_band_csv, parse_geometry_csv, read_band_csv, read_geometry_csv, CsvTable, GeometryTable,
+    parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_views_csv, read_band_csv,
+    read_geometry_csv, read_sky_profile_csv, read_views_csv, CsvTable, GeometryTable,
 };
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};
@@ -21,4 +24,5 @@ pub use measurements::{parse_measurements_csv, read_measurements_csv, Measuremen
 pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
+pub use scene::{parse_scene, read_scene, Scene, SceneObject};
 pub use write::{write_atomic, write_files};

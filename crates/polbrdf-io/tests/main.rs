@@ -3,3 +3,4 @@
 mod csv_files;
 mod material_files;
 mod refractive;
+mod scene;

@@ -366,6 +366,8 @@ pub enum MarkShape {
     Best,
     /// A small ring (further ranked directions).
     Ring,
+    /// A small white dot with a black rim (points of a locus, e.g. the polarization null).
+    Dot,
 }
 
 /// A mark at a direction, with an optional text beside it and an optional legend entry.
@@ -637,6 +639,14 @@ where
             ))?;
             root.draw(&Circle::new(pt(x, y), 10, black))?;
             root.draw(&Circle::new(pt(x, y), 3, BLACK.filled()))?;
+        }
+        MarkShape::Dot => {
+            root.draw(&Circle::new(pt(x, y), 3, WHITE.filled()))?;
+            root.draw(&Circle::new(
+                pt(x, y),
+                3,
+                ShapeStyle::from(&BLACK).stroke_width(1),
+            ))?;
         }
         MarkShape::Ring => {
             root.draw(&Circle::new(

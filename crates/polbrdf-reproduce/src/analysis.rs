@@ -3,6 +3,7 @@
 
 use crate::compute::{self, Fig2, IndexFit, Interpretation, Roughness, Smooth};
 use crate::params::*;
+use polbrdf::analysis::emission::Emissivity;
 use polbrdf::Form;
 
 /// Spread of one Fig. 2 curve (claim 3).
@@ -107,20 +108,131 @@ pub struct Analysis {
     pub emission_n: f64,
     /// Fig. 5(b) curves at `dolp_angles`: (legend, DoLP fractions).
     pub hypothesis_curves: Vec<(String, Vec<f64>)>,
-    /// Diagnostics of interpretation (c): (description, value).
+    /// Diagnostics of interpretation (c), from the core's Kirchhoff emissivity.
     pub emission_notes: EmissionNotes,
 }
 
-/// Why the rough-emission interpretation (c) is not usable with this model: energy balance.
-#[derive(Debug, Clone, Copy)]
+/// The diagnostics of interpretation (c), every number from the core's Kirchhoff emissivity
+/// (`polbrdf::analysis::emission::emissivities`, the one [`Interpretation::emissivities_at`]
+/// calls): validity and reciprocity per cell, the energy balance behind the result, the variant
+/// without shadowing, and the check of the σ → 0 row.
+#[derive(Debug, Clone)]
 pub struct EmissionNotes {
-    /// Flat-surface reflectance R_F at 20° for the emission index.
-    pub r_flat_20: f64,
-    /// Directional-hemispherical reflectance of the model at 20°, σ = 0.1 rad, shadowing on.
-    pub dhr_20_so: f64,
-    /// s- and p-polarized hemispherical reflectance at 80°, σ = 0.3 rad, shadowing off (R_s
-    /// exceeds 1: the model does not conserve energy there).
-    pub dhr_80_noso: (f64, f64),
+    /// The (real) index of (c).
+    pub n: f64,
+    /// (c) itself (shadowing on) at Table 1's rough cells: `cells[r − 1][c]` for the roughness
+    /// row `r` = 1…5 (σ = 0.1…0.5 rad) and the angle column `c`.
+    pub cells: Vec<[Emissivity; 5]>,
+    /// The same with shadowing off, the variant (c′).
+    pub cells_no_so: Vec<[Emissivity; 5]>,
+    /// DoLP in % of (c′) at Table 1's cells (row 0: the Fresnel limit; cells that are not
+    /// physically valid included as the core gives them).
+    pub dolp_no_so: [[f64; 5]; 6],
+    /// RMS of (c′) over its physically valid cells against (the paper's model column, the
+    /// Lawrence/Wolff column), percentage points, and the number of those cells.
+    pub rms_no_so_valid: (f64, f64, usize),
+    /// The flat-surface (Fresnel) emissivities `(1 − R_s, 1 − R_p)` at Table 1's angles.
+    pub flat: [(f64, f64); 5],
+    /// `max_θ |DoLP(σ) − DoLP_Fresnel(θ)|` (fraction) over Table 1's angles at σ =
+    /// `SMOOTH_CHECK_SIGMA_DEG` with shadowing off.
+    pub smooth_gap_no_so: f64,
+    /// The same with shadowing on, at σ = `SMOOTH_CHECK_SIGMA_DEG` and at twice it.
+    pub smooth_gap_so: (f64, f64),
+}
+
+impl EmissionNotes {
+    /// Largest reciprocity residual `max |ε − ε_B|` over the cells of `grid`.
+    pub fn max_residual(grid: &[[Emissivity; 5]]) -> f64 {
+        grid.iter()
+            .flatten()
+            .map(Emissivity::reciprocity_residual)
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest `|ε2|, |ε3|` over the cells of `grid` (0 for this isotropic model by symmetry).
+    pub fn max_eps23(grid: &[[Emissivity; 5]]) -> f64 {
+        grid.iter()
+            .flatten()
+            .map(|e| e.eps.0[2].abs().max(e.eps.0[3].abs()))
+            .fold(0.0, f64::max)
+    }
+
+    /// The cells of `grid` that are not physically valid ([`Emissivity::is_valid`]: ε_s or ε_p
+    /// outside [0, 1]), as `(row, column, emissivity)` with `row` into `ROUGHNESS`.
+    pub fn invalid(grid: &[[Emissivity; 5]]) -> Vec<(usize, usize, Emissivity)> {
+        let mut out = Vec::new();
+        for (r, row) in grid.iter().enumerate() {
+            for (c, e) in row.iter().enumerate() {
+                if !e.is_valid() {
+                    out.push((r + 1, c, *e));
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The emissivities of a (c)-type interpretation at Table 1's rough cells.
+fn emission_cells(it: &Interpretation) -> Result<Vec<[Emissivity; 5]>, polbrdf::Error> {
+    let rad: Vec<f64> = TABLE_ANGLES_DEG.iter().map(|t| t.to_radians()).collect();
+    (1..ROUGHNESS.len())
+        .map(|ri| {
+            let e = it.emissivities_at(ri, &rad).ok_or_else(|| {
+                polbrdf::Error::InconsistentParameters(
+                    "not a thermal-emission interpretation".into(),
+                )
+            })??;
+            e.try_into().map_err(|_| {
+                polbrdf::Error::InconsistentParameters("one emissivity per angle".into())
+            })
+        })
+        .collect()
+}
+
+/// The diagnostics of interpretation (c) with index `n`; `with_so` is (c) itself.
+fn emission_notes(n: f64, with_so: &Interpretation) -> Result<EmissionNotes, polbrdf::Error> {
+    let cells = emission_cells(with_so)?;
+    let no_so = Interpretation::new(Roughness::Emission(n, false))?;
+    let cells_no_so = emission_cells(&no_so)?;
+    let dolp_no_so = compute::table_cells(&no_so);
+    let (mut s_model, mut s_lawrence, mut count) = (0.0, 0.0, 0usize);
+    for (ri, row) in dolp_no_so.iter().enumerate() {
+        for (ci, &d) in row.iter().enumerate() {
+            if ri == 0 || cells_no_so[ri - 1][ci].is_valid() {
+                s_model += (d - TABLE_PAPER_MODEL[ri][ci]).powi(2);
+                s_lawrence += (d - TABLE_PAPER_LAWRENCE[ri][ci]).powi(2);
+                count += 1;
+            }
+        }
+    }
+    let rms = |s: f64| (s / count.max(1) as f64).sqrt();
+    let mut flat = [(0.0, 0.0); 5];
+    for (f, t) in flat.iter_mut().zip(TABLE_ANGLES_DEG) {
+        let (rs, rp) = compute::fresnel_rs_rp(n, 0.0, t.to_radians());
+        *f = (1.0 - rs, 1.0 - rp);
+    }
+    let rad: Vec<f64> = TABLE_ANGLES_DEG.iter().map(|t| t.to_radians()).collect();
+    let gap = |sigma_deg: f64, shadowing: bool| -> Result<f64, polbrdf::Error> {
+        let m = compute::emission_material(n, sigma_deg.to_radians(), shadowing)?;
+        Ok(compute::emission_dolp(&m, &rad)
+            .iter()
+            .zip(&rad)
+            .map(|(d, &t)| (d - Smooth::Emission.dolp(n, 0.0, t)).abs())
+            .fold(0.0, f64::max))
+    };
+    Ok(EmissionNotes {
+        n,
+        cells,
+        cells_no_so,
+        dolp_no_so,
+        rms_no_so_valid: (rms(s_model), rms(s_lawrence), count),
+        flat,
+        smooth_gap_no_so: gap(SMOOTH_CHECK_SIGMA_DEG, false)?,
+        smooth_gap_so: (
+            gap(SMOOTH_CHECK_SIGMA_DEG, true)?,
+            gap(2.0 * SMOOTH_CHECK_SIGMA_DEG, true)?,
+        ),
+    })
 }
 
 impl Analysis {
@@ -263,9 +375,13 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
     let mut interps = Vec::new();
     let mut fig4 = Vec::new();
     let mut no_volume_max_change = 0.0;
+    let mut emission_notes = None;
     for (label, how) in kinds {
         let it = Interpretation::new(how)?;
         let cells = compute::table_cells(&it);
+        if let Roughness::Emission(n, true) = how {
+            emission_notes = Some(self::emission_notes(n, &it)?);
+        }
         if interps.is_empty() {
             fig4 = compute::dolp_curves(&it, &dolp_angles);
         }
@@ -289,25 +405,9 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
         tick("roughness interpretation evaluated");
     }
 
-    let emission_notes = {
-        let q = compute::Quadrature::new();
-        let build = |sigma: f64, shadowing: bool| {
-            let mut spec = polbrdf::MaterialSpec::new(emission_n, sigma.to_degrees());
-            spec.form = Form::Standard;
-            spec.shadowing = shadowing;
-            spec.tau_deg = TAU_DEG;
-            spec.omega_deg = OMEGA_DEG;
-            spec.build()
-        };
-        let (rs, rp) = compute::fresnel_rs_rp(emission_n, 0.0, 20f64.to_radians());
-        let (a1, b1) = q.hemispherical_rs_rp(&build(0.1, true)?, 20f64.to_radians());
-        let (a2, b2) = q.hemispherical_rs_rp(&build(0.3, false)?, 80f64.to_radians());
-        EmissionNotes {
-            r_flat_20: 0.5 * (rs + rp),
-            dhr_20_so: 0.5 * (a1 + b1),
-            dhr_80_noso: (a2, b2),
-        }
-    };
+    let emission_notes = emission_notes.ok_or_else(|| {
+        polbrdf::Error::InconsistentParameters("interpretation (c) not evaluated".into())
+    })?;
 
     Ok(Analysis {
         fig2,

@@ -1,14 +1,14 @@
 //! The numbers behind every figure, table and claim. Every grid goes through the core crate's
 //! batch engine ([`Engine`]: the same functions as [`Material::evaluate`] and
-//! [`Material::evaluate_angles`]); the only formulas written here are the Fresnel-level
-//! hypotheses for Table 1's smooth row and the Kirchhoff-law emission integral, both built on
-//! [`RefractiveIndex::amplitudes`] and the model's own pBRDF.
+//! [`Material::evaluate_angles`]) or, for the thermal-emission interpretation (c), through the
+//! core's Kirchhoff emissivity ([`emissivities`]); the only formulas written here are the
+//! Fresnel-level hypotheses for Table 1's smooth row, built on [`RefractiveIndex::amplitudes`].
 
 use crate::params::*;
-use polbrdf::numeric::quadrature::gauss_legendre;
+use polbrdf::analysis::emission::{emissivities, Emissivity};
 use polbrdf::{
-    AngleVariables, Engine, Form, Geometry, GeometryBatch, Material, MaterialSpec, Mueller,
-    RefractiveIndex, Result as CoreResult,
+    AngleVariables, Engine, Form, GeometryBatch, Material, MaterialSpec, Mueller, RefractiveIndex,
+    Result as CoreResult,
 };
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -25,6 +25,18 @@ pub fn material(
     spec.rho_d = rho_d;
     spec.rho_v = rho_v;
     spec.shadowing = shadowing;
+    spec.tau_deg = TAU_DEG;
+    spec.omega_deg = OMEGA_DEG;
+    spec.build()
+}
+
+/// The material of interpretation (c) (thermal emission) at roughness `sigma` (σ of D in
+/// radians): real index `n`, standard form (the `paper` form has no emissivity: its
+/// hemispherical integrals diverge), no volume term, the paper's τ and Ω, shadowing as given.
+pub fn emission_material(n: f64, sigma: f64, shadowing: bool) -> CoreResult<Material> {
+    let mut spec = MaterialSpec::new(n, sigma.to_degrees());
+    spec.shadowing = shadowing;
+    spec.form = Form::Standard;
     spec.tau_deg = TAU_DEG;
     spec.omega_deg = OMEGA_DEG;
     spec.build()
@@ -288,7 +300,10 @@ pub enum Roughness {
     SigmaNoVolume,
     /// (c) thermal emission of the rough surface by Kirchhoff's law, ε_s,p = 1 − (directional-
     /// hemispherical reflectance of the model for s, p input), σ = roughness in radians,
-    /// standard form, no volume term, index `n` (real); shadowing on when the flag is true.
+    /// standard form, no volume term, index `n` (real); shadowing on when the flag is true
+    /// ([`emission_material`]). Every value σ > 0 is the core's emissivity ([`emissivities`],
+    /// route A) and its DoLP [`Emissivity::dolp`]; roughness 0 is the σ → 0 limit, the Fresnel
+    /// emission DoLP [`Smooth::Emission`].
     Emission(f64, bool),
 }
 
@@ -299,7 +314,6 @@ pub struct Interpretation {
     /// One material per roughness value (None for the σ → 0 limit).
     materials: Vec<(f64, Option<Material>)>,
     smooth: Material,
-    quad: Quadrature,
 }
 
 impl Interpretation {
@@ -315,12 +329,7 @@ impl Interpretation {
                     Some(material(Form::Paper, r.to_degrees(), 0.0, 0.0, true)?)
                 }
                 Roughness::Emission(n, shadowing) if r > 0.0 => {
-                    let mut spec = MaterialSpec::new(n, r.to_degrees());
-                    spec.shadowing = shadowing;
-                    spec.form = Form::Standard;
-                    spec.tau_deg = TAU_DEG;
-                    spec.omega_deg = OMEGA_DEG;
-                    Some(spec.build()?)
+                    Some(emission_material(n, r, shadowing)?)
                 }
                 Roughness::ThetaNWithVolume => {
                     Some(material(Form::Paper, FIG2_SIGMA_DEG, RHO_D, RHO_V, true)?)
@@ -333,7 +342,6 @@ impl Interpretation {
             how,
             materials,
             smooth: material(Form::Paper, SMOOTH_SIGMA_DEG, 0.0, 0.0, true)?,
-            quad: Quadrature::new(),
         })
     }
 
@@ -347,8 +355,30 @@ impl Interpretation {
         self.dolp_at(ri, &[theta])[0]
     }
 
+    /// The material of roughness index `ri` (`None` for the σ → 0 row of (a), (a₀) and (c)).
+    pub fn material(&self, ri: usize) -> Option<&Material> {
+        self.materials[ri].1.as_ref()
+    }
+
+    /// For interpretation (c) at σ > 0: the core's Kirchhoff emissivity (both routes) at
+    /// roughness index `ri` and each view angle of `thetas` (rad, in `[0, π/2)`), one batched
+    /// call. `None` for the σ → 0 row (the Fresnel limit) and for the other interpretations.
+    ///
+    /// # Errors
+    /// The core's, for an angle outside `[0, π/2)`.
+    pub fn emissivities_at(
+        &self,
+        ri: usize,
+        thetas: &[f64],
+    ) -> Option<CoreResult<Vec<Emissivity>>> {
+        match (self.how, &self.materials[ri].1) {
+            (Roughness::Emission(..), Some(m)) => Some(emissivities(m, thetas)),
+            _ => None,
+        }
+    }
+
     /// DoLP (fraction) at roughness index `ri` and each angle of `thetas` (rad), through the
-    /// engine.
+    /// engine (for (c), the core's emissivity; NaN at angles outside `[0, π/2)`).
     pub fn dolp_at(&self, ri: usize, thetas: &[f64]) -> Vec<f64> {
         let (r, ref m) = self.materials[ri];
         match (self.how, m) {
@@ -356,13 +386,7 @@ impl Interpretation {
                 .iter()
                 .map(|&t| Smooth::Emission.dolp(n, 0.0, t))
                 .collect(),
-            (Roughness::Emission(_, _), Some(m)) => thetas
-                .iter()
-                .map(|&t| {
-                    let (rs, rp) = self.quad.hemispherical_rs_rp(m, t);
-                    (rs - rp).abs() / (2.0 - rs - rp)
-                })
-                .collect(),
+            (Roughness::Emission(_, _), Some(m)) => emission_dolp(m, thetas),
             (Roughness::ThetaNWithVolume, Some(m)) => {
                 let vars: Vec<AngleVariables> = thetas
                     .iter()
@@ -396,86 +420,26 @@ pub fn specular_dolp(m: &Material, thetas: &[f64]) -> Vec<f64> {
     }
 }
 
-/// Quadrature over the facet normal h for hemispherical integrals.
-pub struct Quadrature {
-    /// Gauss–Legendre nodes/weights on [−1, 1].
-    gl: (Vec<f64>, Vec<f64>),
-    panels: usize,
-    azimuths: usize,
-}
-
-impl Quadrature {
-    /// 12 panels × 20-point Gauss–Legendre in θN, 180-point midpoint rule in φN.
-    pub fn new() -> Self {
-        Self::with(12, 180)
-    }
-
-    /// `panels` × 20-point Gauss–Legendre in θN ∈ [0, min(9σ, π/2)], `azimuths`-point
-    /// midpoint rule in φN (spectrally accurate for the periodic integrand).
-    pub fn with(panels: usize, azimuths: usize) -> Self {
-        Self {
-            gl: gauss_legendre(20),
-            panels: panels.max(1),
-            azimuths: azimuths.max(1),
-        }
-    }
-
-    /// Directional-hemispherical reflectance of the model for s- and p-polarized light incident
-    /// at `theta` (rad): `R_{s,p} = ∫ (F00 ± F01) cosθr dΩr` over the upper hemisphere,
-    /// integrated over the facet normal h (`dΩr = 4 cosβ dΩh`; reflected directions below the
-    /// horizon carry nothing).
-    pub fn hemispherical_rs_rp(&self, m: &Material, theta: f64) -> (f64, f64) {
-        let (st, ct) = theta.sin_cos();
-        let sigma = m.distribution().sigma();
-        let hi = (9.0 * sigma).min(FRAC_PI_2);
-        let (x, w) = (&self.gl.0, &self.gl.1);
-        let width = hi / self.panels as f64;
-        let dphi = 2.0 * PI / self.azimuths as f64;
-        let mut geoms = Vec::new();
-        let mut weights = Vec::new();
-        for p in 0..self.panels {
-            let a = p as f64 * width;
-            for (xi, wi) in x.iter().zip(w) {
-                let tn = a + 0.5 * width * (xi + 1.0);
-                let wt = 0.5 * width * wi;
-                let (sn, cn) = tn.sin_cos();
-                for q in 0..self.azimuths {
-                    let pn = (q as f64 + 0.5) * dphi;
-                    let h = [sn * pn.cos(), sn * pn.sin(), cn];
-                    let cb = st * h[0] + ct * h[2];
-                    if cb <= 0.0 {
-                        continue;
-                    }
-                    let wr = [2.0 * cb * h[0] - st, 2.0 * cb * h[1], 2.0 * cb * h[2] - ct];
-                    if wr[2] <= 0.0 {
-                        continue;
-                    }
-                    let tr = wr[2].clamp(-1.0, 1.0).acos();
-                    let pr = wr[1].atan2(wr[0]);
-                    let Ok(g) = Geometry::new(theta, 0.0, tr, pr) else {
-                        continue;
-                    };
-                    geoms.push(g);
-                    weights.push(wr[2] * 4.0 * cb * sn * wt * dphi);
-                }
+/// The DoLP `sqrt(ε1² + ε2²)/ε0` of the thermal emission of `m` toward each view angle of
+/// `thetas` (rad), from the core's Kirchhoff emissivity ([`emissivities`], route A; one batched
+/// call); NaN at angles outside `[0, π/2)`, where no direction is viewed.
+pub fn emission_dolp(m: &Material, thetas: &[f64]) -> Vec<f64> {
+    let inside = |t: f64| (0.0..FRAC_PI_2).contains(&t);
+    let viewed: Vec<f64> = thetas.iter().copied().filter(|&t| inside(t)).collect();
+    let Ok(e) = emissivities(m, &viewed) else {
+        return vec![f64::NAN; thetas.len()];
+    };
+    let mut e = e.iter();
+    thetas
+        .iter()
+        .map(|&t| {
+            if inside(t) {
+                e.next().map_or(f64::NAN, Emissivity::dolp)
+            } else {
+                f64::NAN
             }
-        }
-        let f = Engine::new(m)
-            .pbrdf_of(&geoms)
-            .expect("no per-element index");
-        let (mut rs, mut rp) = (0.0, 0.0);
-        for (f, jac) in f.iter().zip(&weights) {
-            rs += (f[(0, 0)] + f[(0, 1)]) * jac;
-            rp += (f[(0, 0)] - f[(0, 1)]) * jac;
-        }
-        (rs, rp)
-    }
-}
-
-impl Default for Quadrature {
-    fn default() -> Self {
-        Self::new()
-    }
+        })
+        .collect()
 }
 
 // ---------------------------------------------------------------------------------------------

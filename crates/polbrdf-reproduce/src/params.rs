@@ -68,6 +68,11 @@ pub const DOLP_MAX_DEG: f64 = 89.9;
 /// Angle step of the thermal-emission curves (each point is a 2-D integral), degrees.
 pub const EMISSION_STEP_DEG: f64 = 1.0;
 
+/// σ (degrees) at which interpretation (c)'s σ → 0 row (the Fresnel emission DoLP) is checked
+/// against the model itself: the smallest σ at which the core's emissivity is stated to 1e-6
+/// (`polbrdf::analysis::emission`); the check is repeated at twice this σ to show the rate.
+pub const SMOOTH_CHECK_SIGMA_DEG: f64 = 0.05;
+
 /// Range of the 1-D index scans (real n), log-spaced.
 pub const SCAN_N_MIN: f64 = 1.01;
 /// Upper end of the real-n scan.

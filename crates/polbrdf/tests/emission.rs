@@ -360,3 +360,86 @@ fn planck_against_tabulated_and_integral_values() {
         .unwrap();
     assert!((peak * t - 2897.771955).abs() < 0.05, "{peak}");
 }
+
+#[test]
+fn an_observed_profile_sky_is_the_direct_sky_integral_at_every_azimuth() {
+    // The observer computes each zenith once (at φ = 0) and reuses it at every azimuth and in
+    // later calls: that rests on the sky's and the model's symmetry about the normal. Check it
+    // against the sky integral taken at each view's own azimuth, and a second call against the
+    // first, bit for bit.
+    let mut s = spec(1.6, 0.05, 20.0);
+    s.rho_d = 0.02;
+    let m = s.build().unwrap();
+    let profile = ZenithProfile::new(vec![0.0, 60.0, 90.0], vec![1.0, 1.4, 3.0]).unwrap();
+    let scene = ThermalScene {
+        surface_temperature_k: Some(290.0),
+        sky: SkyModel::Profile(profile.clone()),
+        atmosphere: Atmosphere::default(),
+    };
+    let observer =
+        polbrdf::analysis::scene::Observer::new(&s, &scene, &Spectrum::Wavelength(10.0)).unwrap();
+    let views: Vec<(f64, f64)> =
+        [(0.3, 0.0), (0.3, 2.5), (1.2, -1.0), (1.2, 4.0), (0.3, 6.0)].to_vec();
+    let first = observer.observe(&views);
+    let again = observer.observe(&views);
+    assert_eq!(first, again);
+    let sky = ProfileSky {
+        profile,
+        scale: 1.0,
+    };
+    for (x, &(t, p)) in first.iter().zip(&views) {
+        let direct = sky_reflection(&m, t, p, &sky).unwrap();
+        for j in 0..4 {
+            assert!(
+                (x.reflected.0[j] - direct.0[j]).abs() < 1e-12 * direct.0[0],
+                "θ {t} φ {p}: S{j} {} vs {}",
+                x.reflected.0[j],
+                direct.0[j]
+            );
+        }
+        let e = emissivity(&m, t).unwrap().eps;
+        let b = planck(10.0, 290.0);
+        for j in 0..4 {
+            assert!((x.emitted.0[j] - b * e.0[j]).abs() < 1e-12 * b);
+        }
+    }
+}
+
+#[test]
+fn a_scene_contrast_ranks_rings_of_view_zeniths() {
+    // Symmetric about the normal: the best directions are listed at φ = 0, at distinct
+    // zeniths at least the separation apart, each refined to a score no worse than its
+    // grid node's, and the refined score is that of a fresh evaluation there.
+    use polbrdf::analysis::scene::Observer;
+    use polbrdf::analysis::{Contrast, RankOptions, ViewGrid};
+    let w = Spectrum::Wavelength(10.0);
+    let paint = spec(1.5, 0.05, 15.0);
+    let soil = spec(1.8, 0.3, 35.0);
+    let target = Observer::new(&paint, &thermal_scene(305.0, 250.0), &w).unwrap();
+    let background = Observer::new(&soil, &thermal_scene(300.0, 250.0), &w).unwrap();
+    let c = Contrast::scene(target, background);
+    assert!(c.is_azimuth_independent());
+    let grid = ViewGrid::from_degrees(5.0, 30.0).unwrap();
+    let map = c.map(&grid);
+    let opts = RankOptions {
+        count: 4,
+        ..RankOptions::default()
+    };
+    let top = c.rank(&map, &opts);
+    assert!(!top.is_empty());
+    for (k, s) in top.iter().enumerate() {
+        assert_eq!(s.phi_r, 0.0);
+        let fresh = c.at(s.theta_r, 0.0);
+        assert_eq!(fresh.delta_dolp(), s.delta_dolp());
+        // No better grid node at φ = 0 within one step of it.
+        let step = grid.theta_step();
+        for g in map.samples.iter().filter(|g| g.phi_r == 0.0) {
+            if (g.theta_r - s.theta_r).abs() <= step * 0.999 && k == 0 {
+                assert!(g.delta_dolp().abs() <= s.delta_dolp().abs() + 1e-15);
+            }
+        }
+        // The same score at every azimuth.
+        let other = c.at(s.theta_r, 2.0);
+        assert!((other.delta_dolp() - s.delta_dolp()).abs() < 1e-15);
+    }
+}

@@ -29,6 +29,7 @@
 //! better one (greedy non-maximum suppression), then optionally refined by brute force around
 //! its grid node.
 
+use crate::analysis::scene::Observer;
 use crate::engine::{Engine, Kernel};
 use crate::error::{AngleProblem, Error, Result};
 use crate::geometry::{direction, Geometry};
@@ -326,6 +327,11 @@ impl ContrastSample {
     pub fn delta_dolp(&self) -> f64 {
         self.dolp_target() - self.dolp_background()
     }
+    /// `S0_target − S0_background`: the radiance difference an intensity camera sees (per unit
+    /// irradiance under a collimated source; W·m⁻²·sr⁻¹(·µm⁻¹) in a scene).
+    pub fn radiance_difference(&self) -> f64 {
+        self.target.s0() - self.background.s0()
+    }
     /// `S0_target / S0_background`: 1 when both are 0, +∞ when only the background is.
     pub fn intensity_ratio(&self) -> f64 {
         let (t, b) = (self.target.s0(), self.background.s0());
@@ -438,16 +444,30 @@ impl Default for RankOptions {
     }
 }
 
-/// Target and background under one illumination, at one wavelength or over a band: the
-/// reflected Stokes vectors are the weighted sums over spectral nodes
-/// `S = Σ w_j·F_j·S_in` (one node of weight 1 for a single wavelength; a band's normalized
-/// quadrature weights otherwise, `crate::analysis::spectral`), so every derived quantity comes
-/// from band-integrated Stokes vectors.
+/// Target and background compared at every view direction: either under one collimated
+/// source, per unit irradiance, at one wavelength or over a band — the reflected Stokes vectors
+/// are the weighted sums over spectral nodes `S = Σ w_j·F_j·S_in` (one node of weight 1 for a
+/// single wavelength; a band's normalized quadrature weights otherwise,
+/// `crate::analysis::spectral`) — or in a scene ([`Contrast::scene`]: each surface's observed
+/// Stokes radiance, emission and sky included, docs/model.md §17). Every derived quantity
+/// comes from (band-integrated) Stokes vectors.
 #[derive(Debug, Clone)]
 pub struct Contrast {
-    /// `(weight, target, background)` per spectral node.
-    nodes: Vec<(f64, Material, Material)>,
-    light: Illumination,
+    source: Source,
+}
+
+#[derive(Debug, Clone)]
+enum Source {
+    /// `(weight, target, background)` per spectral node, under one collimated source.
+    Collimated {
+        nodes: Vec<(f64, Material, Material)>,
+        light: Illumination,
+    },
+    /// Each surface in its scene.
+    Scene {
+        target: Box<Observer>,
+        background: Box<Observer>,
+    },
 }
 
 /// [`ContrastSample`]s at every node of a [`ViewGrid`], zenith-major.
@@ -463,8 +483,10 @@ impl Contrast {
     /// Target, background and illumination, at one wavelength (the materials as given).
     pub fn new(target: &Material, background: &Material, light: Illumination) -> Self {
         Self {
-            nodes: vec![(1.0, target.clone(), background.clone())],
-            light,
+            source: Source::Collimated {
+                nodes: vec![(1.0, target.clone(), background.clone())],
+                light,
+            },
         }
     }
 
@@ -475,36 +497,59 @@ impl Contrast {
     /// When `nodes` is empty.
     pub fn spectral(nodes: Vec<(f64, Material, Material)>, light: Illumination) -> Self {
         assert!(!nodes.is_empty(), "at least one spectral node");
-        Self { nodes, light }
+        Self {
+            source: Source::Collimated { nodes, light },
+        }
     }
 
-    /// The illumination.
-    pub fn light(&self) -> Illumination {
-        self.light
+    /// Target and background each observed in its scene (typically the same sky, band and
+    /// atmosphere with each surface's own temperature): their observed Stokes radiances.
+    pub fn scene(target: Observer, background: Observer) -> Self {
+        Self {
+            source: Source::Scene {
+                target: Box::new(target),
+                background: Box::new(background),
+            },
+        }
     }
 
-    /// The target (at the first spectral node).
-    pub fn target(&self) -> &Material {
-        &self.nodes[0].1
+    /// The collimated illumination, `None` in a scene without one.
+    pub fn light(&self) -> Option<Illumination> {
+        match &self.source {
+            Source::Collimated { light, .. } => Some(*light),
+            Source::Scene { .. } => None,
+        }
     }
 
-    /// The background (at the first spectral node).
-    pub fn background(&self) -> &Material {
-        &self.nodes[0].2
+    /// The target and background observers of a scene contrast.
+    pub fn observers(&self) -> Option<(&Observer, &Observer)> {
+        match &self.source {
+            Source::Scene {
+                target, background, ..
+            } => Some((target, background)),
+            Source::Collimated { .. } => None,
+        }
     }
 
-    /// The spectral nodes `(weight, target, background)`.
+    /// The spectral nodes `(weight, target, background)` of a collimated contrast (empty in a
+    /// scene).
     pub fn nodes(&self) -> &[(f64, Material, Material)] {
-        &self.nodes
+        match &self.source {
+            Source::Collimated { nodes, .. } => nodes,
+            Source::Scene { .. } => &[],
+        }
     }
 
     /// Both materials seen from `(theta_r, phi_r)` (rad; θr clamped into `[0, π/2]`), by the
     /// engine's single-element path.
     pub fn at(&self, theta_r: f64, phi_r: f64) -> ContrastSample {
-        let g = self.light.geometry(theta_r, phi_r);
-        let s = self.light.stokes;
+        let Source::Collimated { nodes, light } = &self.source else {
+            return self.at_all(&[(theta_r, phi_r)])[0];
+        };
+        let g = light.geometry(theta_r, phi_r);
+        let s = light.stokes;
         let (mut t, mut b) = (Stokes([0.0; 4]), Stokes([0.0; 4]));
-        for (w, target, background) in &self.nodes {
+        for (w, target, background) in nodes {
             t = t.combine(1.0, &Kernel::new(target).pbrdf(&g).apply(&s), *w);
             b = b.combine(1.0, &Kernel::new(background).pbrdf(&g).apply(&s), *w);
         }
@@ -519,14 +564,27 @@ impl Contrast {
     /// Both materials seen from each direction `(θr, φr)` (rad; θr clamped into `[0, π/2]`),
     /// through the engine.
     pub fn at_all(&self, dirs: &[(f64, f64)]) -> Vec<ContrastSample> {
-        let geoms: Vec<Geometry> = dirs
-            .iter()
-            .map(|&(t, p)| self.light.geometry(t, p))
-            .collect();
-        let s = self.light.stokes;
+        let (nodes, light) = match &self.source {
+            Source::Collimated { nodes, light } => (nodes, light),
+            Source::Scene { target, background } => {
+                let (t, b) = rayon::join(|| target.observe(dirs), || background.observe(dirs));
+                return t
+                    .iter()
+                    .zip(&b)
+                    .map(|(t, b)| ContrastSample {
+                        theta_r: t.theta_r,
+                        phi_r: t.phi_r,
+                        target: t.stokes,
+                        background: b.stokes,
+                    })
+                    .collect();
+            }
+        };
+        let geoms: Vec<Geometry> = dirs.iter().map(|&(t, p)| light.geometry(t, p)).collect();
+        let s = light.stokes;
         let zero = Stokes([0.0; 4]);
         let (mut t, mut b) = (vec![zero; dirs.len()], vec![zero; dirs.len()]);
-        for (w, target, background) in &self.nodes {
+        for (w, target, background) in nodes {
             let ft = Engine::new(target).pbrdf_of(&geoms).expect("no index");
             let fb = Engine::new(background).pbrdf_of(&geoms).expect("no index");
             for k in 0..dirs.len() {
@@ -544,6 +602,14 @@ impl Contrast {
             .collect()
     }
 
+    /// Whether every result is the same at all view azimuths: a scene contrast, whose skies
+    /// are all azimuth-independent, with a model that is isotropic. The best directions are
+    /// then rings about the normal, and [`Contrast::rank`] ranks view zeniths (at the grid's
+    /// first azimuth) instead of listing one ring's azimuths.
+    pub fn is_azimuth_independent(&self) -> bool {
+        matches!(self.source, Source::Scene { .. })
+    }
+
     /// Both materials over the whole grid, through the engine.
     pub fn map(&self, grid: &ViewGrid) -> ContrastMap {
         let dirs: Vec<(f64, f64)> = (0..grid.len()).map(|i| grid.direction(i)).collect();
@@ -558,11 +624,14 @@ impl Contrast {
     /// at most `opts.count`, refined by brute force when `opts.refine`. Nodes whose score is not
     /// a number are skipped.
     pub fn rank(&self, map: &ContrastMap, opts: &RankOptions) -> Vec<ContrastSample> {
+        let ring = self.is_azimuth_independent();
+        let first_phi = map.grid.phis().first().copied().unwrap_or(0.0);
         let mut order: Vec<(usize, f64)> = map
             .samples
             .iter()
             .enumerate()
             .filter(|(_, s)| s.theta_r <= opts.max_zenith * (1.0 + 1e-12))
+            .filter(|(_, s)| !ring || s.phi_r == first_phi)
             .map(|(i, s)| (i, s.score(opts.by)))
             .filter(|(_, v)| !v.is_nan())
             .collect();
@@ -595,12 +664,47 @@ impl Contrast {
     }
 
     /// Brute-force search of the cell of ±1 grid step around `s` (clamped to the grid's zenith
-    /// range and `opts.max_zenith`), on a grid 8 times finer, twice.
+    /// range and `opts.max_zenith`), on a grid 8 times finer, twice. For azimuth-independent
+    /// results ([`Contrast::is_azimuth_independent`]) the search is over the zenith only: a
+    /// golden-section search of the same interval down to 1/64 of the grid step, every
+    /// evaluated zenith a candidate (about 12 evaluations instead of 34).
     fn refine(&self, s: &ContrastSample, grid: &ViewGrid, opts: &RankOptions) -> ContrastSample {
         const SUB: i32 = 8;
         let by = opts.by;
         let t_max = grid.theta_max().min(opts.max_zenith * (1.0 + 1e-12));
         let mut best = *s;
+        if self.is_azimuth_independent() {
+            let dt = grid.theta_step();
+            let (mut a, mut b) = ((s.theta_r - dt).max(0.0), (s.theta_r + dt).min(t_max));
+            let g = 0.5 * (5f64.sqrt() - 1.0);
+            let at = |t: f64| self.at_all(&[(t, s.phi_r)])[0];
+            let consider = |c: ContrastSample, best: &mut ContrastSample| {
+                if c.score(by) > best.score(by) {
+                    *best = c;
+                }
+            };
+            let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
+            let (mut f1, mut f2) = (at(x1), at(x2));
+            consider(f1, &mut best);
+            consider(f2, &mut best);
+            while b - a > dt / 64.0 {
+                // Keep the better half; NaN scores count as worst.
+                if f1.score(by) >= f2.score(by) || f2.score(by).is_nan() {
+                    b = x2;
+                    (x2, f2) = (x1, f1);
+                    x1 = b - g * (b - a);
+                    f1 = at(x1);
+                    consider(f1, &mut best);
+                } else {
+                    a = x1;
+                    (x1, f1) = (x2, f2);
+                    x2 = a + g * (b - a);
+                    f2 = at(x2);
+                    consider(f2, &mut best);
+                }
+            }
+            return best;
+        }
         let (mut dt, mut dp) = (grid.theta_step(), grid.phi_step());
         for _ in 0..2 {
             let (t0, p0) = (best.theta_r, best.phi_r);
@@ -641,4 +745,38 @@ pub fn separation(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ];
     let c = cross[0].hypot(cross[1]).hypot(cross[2]);
     c.atan2(w_dot(a, b))
+}
+
+/// The locus of the polarization null of the target (`target = true`) or the background on a
+/// map: for each azimuth of the grid, the view zenith angles where S1 of the observed Stokes
+/// vector changes sign between two grid zeniths, interpolated linearly — where the emitted
+/// (p-polarized, S1 < 0) and the reflected (s-polarized) polarizations cancel in a thermal
+/// scene (docs/model.md §17). `(θr, φr)` in radians, azimuth-major.
+pub fn polarization_null(map: &ContrastMap, target: bool) -> Vec<(f64, f64)> {
+    let grid = &map.grid;
+    let (nt, np) = (grid.n_theta(), grid.n_phi());
+    let s1 = |k: usize, j: usize| {
+        let s = &map.samples[k * np + j];
+        (
+            s.theta_r,
+            if target {
+                s.target.0[1]
+            } else {
+                s.background.0[1]
+            },
+        )
+    };
+    let mut out = Vec::new();
+    for j in 0..np {
+        let phi = map.samples[j].phi_r;
+        for k in 1..nt {
+            let ((t0, a), (t1, b)) = (s1(k - 1, j), s1(k, j));
+            if a != 0.0 && b != 0.0 && (a < 0.0) != (b < 0.0) {
+                out.push((t0 + (t1 - t0) * a / (a - b), phi));
+            } else if b == 0.0 && a != 0.0 {
+                out.push((t1, phi));
+            }
+        }
+    }
+    out
 }

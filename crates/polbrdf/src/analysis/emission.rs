@@ -127,6 +127,39 @@ pub fn emissivities_with(
     theta_r: &[f64],
     rule: FacetRule,
 ) -> Result<Vec<Emissivity>> {
+    let both = routes(material, theta_r, rule, true)?;
+    Ok(theta_r
+        .iter()
+        .zip(both)
+        .map(|(&t, (eps, eps_b))| Emissivity {
+            theta_r: t,
+            eps,
+            eps_b: eps_b.expect("route B requested"),
+        })
+        .collect())
+}
+
+/// The emissivity Stokes vector ε by route A only (the definition; half the work of
+/// [`emissivities`]) toward each view zenith of `theta_r` (rad), with the default rule: what
+/// the observed radiance of a scene needs.
+///
+/// # Errors
+/// As [`emissivities`].
+pub fn emissivity_vectors(material: &Material, theta_r: &[f64]) -> Result<Vec<Stokes>> {
+    let rule = FacetRule::for_material(material);
+    Ok(routes(material, theta_r, rule, false)?
+        .into_iter()
+        .map(|(a, _)| a)
+        .collect())
+}
+
+/// Route A, and route B when `route_b`, at every view zenith of `theta_r`.
+fn routes(
+    material: &Material,
+    theta_r: &[f64],
+    rule: FacetRule,
+    route_b: bool,
+) -> Result<Vec<(Stokes, Option<Stokes>)>> {
     use rayon::prelude::*;
     for (i, &t) in theta_r.iter().enumerate() {
         if !(t.is_finite() && (0.0..FRAC_PI_2).contains(&t)) {
@@ -163,25 +196,25 @@ pub fn emissivities_with(
             let zeros = vec![0.0; m];
             let node_t: Vec<f64> = nodes.iter().map(|n| n.theta).collect();
             let node_p: Vec<f64> = nodes.iter().map(|n| n.phi).collect();
+            let volume = volume_hemispherical(material, t.cos());
             // Route A: F(w_i, w_r), w_i at the nodes, w_r = (θr, 0): the first column.
             let a = GeometryBatch::new(&node_t, &node_p, &fixed, &zeros)
                 .expect("directions above the horizon by construction");
-            // Route B: F(w_r, w_o), w_o at the nodes: the first row.
-            let b = GeometryBatch::new(&fixed, &zeros, &node_t, &node_p)
-                .expect("directions above the horizon by construction");
             let col = weighted_sums(&kernel, &a, &nodes, |f| [f[0], f[4], f[8], f[12]]);
-            let row = weighted_sums(&kernel, &b, &nodes, |f| [f[0], f[1], f[2], f[3]]);
-            let volume = volume_hemispherical(material, t.cos());
-            Emissivity {
-                theta_r: t,
-                eps: Stokes([1.0 - col[0] - volume, -col[1], -col[2], -col[3]]),
-                eps_b: Stokes([
+            let eps = Stokes([1.0 - col[0] - volume, -col[1], -col[2], -col[3]]);
+            // Route B: F(w_r, w_o), w_o at the nodes: the first row.
+            let eps_b = route_b.then(|| {
+                let b = GeometryBatch::new(&fixed, &zeros, &node_t, &node_p)
+                    .expect("directions above the horizon by construction");
+                let row = weighted_sums(&kernel, &b, &nodes, |f| [f[0], f[1], f[2], f[3]]);
+                Stokes([
                     1.0 - row[0] - volume,
                     -p[1] * row[1],
                     -p[2] * row[2],
                     -p[3] * row[3],
-                ]),
-            }
+                ])
+            });
+            (eps, eps_b)
         })
         .collect();
     Ok(out)

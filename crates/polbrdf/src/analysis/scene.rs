@@ -15,13 +15,16 @@
 //! radiance (W·m⁻²·sr⁻¹·µm⁻¹). A sky's `radiance` and the path radiance are spectral radiances,
 //! taken as constant across a band.
 
-use crate::analysis::emission::{emissivities, Emissivity};
+use crate::analysis::emission::emissivity_vectors;
 use crate::analysis::sky::{sky_reflection, ProfileSky, ZenithProfile};
 use crate::analysis::spectral::Spectrum;
 use crate::analysis::thermal::{planck, temperature};
 use crate::error::{Error, Result};
-use crate::model::MaterialSpec;
+use crate::model::{Material, MaterialSpec};
 use crate::optics::stokes::Stokes;
+use std::collections::HashMap;
+use std::f64::consts::FRAC_PI_2;
+use std::sync::{Arc, Mutex};
 
 /// The sky of a thermal scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -142,87 +145,261 @@ pub struct Radiance {
     pub reflected: Stokes,
 }
 
+/// A surface prepared for observation in a scene: its materials at the spectral nodes, the
+/// scene validated — [`Observer::observe`] cannot fail.
+///
+/// The model is isotropic and every sky here is azimuth-independent, so what the surface
+/// emits and reflects toward `(θr, φr)` depends on θr alone (its Stokes vector is in the basis
+/// of the view's own plane): it is computed once per distinct view zenith and kept — a second
+/// `observe` at the same zeniths (the refinement of a contrast's best directions, the other
+/// azimuths of a map) costs no quadrature. Clones share that cache.
+#[derive(Debug, Clone)]
+pub struct Observer {
+    scene: ThermalScene,
+    /// `(λ, weight of the integral, material at λ)` per spectral node.
+    nodes: Vec<(f64, f64, Material)>,
+    /// Per view zenith (its bits): per spectral node, ε by route A and the profile sky's
+    /// reflection (zero for other skies).
+    cache: Arc<Mutex<HashMap<u64, Arc<[ZenithTerms]>>>>,
+}
+
+/// What a surface emits and reflects toward one view zenith at one spectral node.
+#[derive(Debug, Clone, Copy)]
+struct ZenithTerms {
+    eps: Stokes,
+    profile_reflection: Stokes,
+}
+
+/// Views closer to the horizon than this (rad) are observed at `π/2 − HORIZON_MARGIN`.
+pub const HORIZON_MARGIN: f64 = 1e-7;
+
+impl Observer {
+    /// `spec` in `scene` at one wavelength or over a band ([`Spectrum::integral_nodes`]).
+    ///
+    /// # Errors
+    /// As [`ThermalScene::validate`]; [`Error::WavelengthOutOfRange`] where the spectrum leaves
+    /// a spectral index's data; [`Error::InconsistentParameters`] for the `paper` form (no
+    /// emissivity).
+    pub fn new(spec: &MaterialSpec, scene: &ThermalScene, spectrum: &Spectrum) -> Result<Self> {
+        scene.validate()?;
+        let nodes = spectrum.integral_nodes(&[spec]);
+        let materials = Spectrum::materials(spec, &nodes)?;
+        if let Some(m) = materials.first() {
+            if crate::analysis::albedo::surface_integral_diverges(m) {
+                return Err(Error::InconsistentParameters(
+                    "the `paper` form has no emissivity and reflects an infinite sky radiance: \
+                     its f·cosθ grows like 1/cosθ toward the horizon (use form = \"standard\")"
+                        .into(),
+                ));
+            }
+        }
+        Ok(Self {
+            scene: scene.clone(),
+            nodes: nodes
+                .iter()
+                .zip(materials)
+                .map(|((l, w), m)| (*l, *w, m))
+                .collect(),
+            cache: Arc::default(),
+        })
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &ThermalScene {
+        &self.scene
+    }
+
+    /// The number of spectral nodes (1 at one wavelength).
+    pub fn spectral_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The terms of every zenith of `zeniths` (clamped, distinct), computing the missing ones:
+    /// all missing zeniths of one spectral node in one batched call.
+    fn terms(&self, zeniths: &[f64]) -> Vec<Arc<[ZenithTerms]>> {
+        let missing: Vec<f64> = {
+            let cache = self.cache.lock().expect("no panic while holding the cache");
+            zeniths
+                .iter()
+                .copied()
+                .filter(|t| !cache.contains_key(&t.to_bits()))
+                .collect()
+        };
+        if !missing.is_empty() {
+            use rayon::prelude::*;
+            // per node, per missing zenith
+            let per_node: Vec<Vec<ZenithTerms>> = self
+                .nodes
+                .par_iter()
+                .map(|(_, _, m)| {
+                    let eps = emissivity_vectors(m, &missing)
+                        .expect("validated material and clamped angles");
+                    let profile: Vec<Stokes> = match &self.scene.sky {
+                        SkyModel::Profile(profile) => missing
+                            .par_iter()
+                            .map(|&t| {
+                                sky_reflection(
+                                    m,
+                                    t,
+                                    0.0,
+                                    &ProfileSky {
+                                        profile: profile.clone(),
+                                        scale: 1.0,
+                                    },
+                                )
+                                .expect("validated material and clamped angles")
+                            })
+                            .collect(),
+                        _ => vec![Stokes([0.0; 4]); missing.len()],
+                    };
+                    eps.into_iter()
+                        .zip(profile)
+                        .map(|(eps, profile_reflection)| ZenithTerms {
+                            eps,
+                            profile_reflection,
+                        })
+                        .collect()
+                })
+                .collect();
+            let mut cache = self.cache.lock().expect("no panic while holding the cache");
+            for (j, t) in missing.iter().enumerate() {
+                let row: Arc<[ZenithTerms]> = per_node.iter().map(|v| v[j]).collect();
+                cache.insert(t.to_bits(), row);
+            }
+        }
+        let cache = self.cache.lock().expect("no panic while holding the cache");
+        zeniths
+            .iter()
+            .map(|t| Arc::clone(&cache[&t.to_bits()]))
+            .collect()
+    }
+
+    /// The observed Stokes radiance at every view `(θr, φr)` (rad; θr clamped into
+    /// `[0, π/2 − HORIZON_MARGIN]`, φr any finite value).
+    ///
+    /// # Panics
+    /// For a non-finite view angle.
+    pub fn observe(&self, views: &[(f64, f64)]) -> Vec<Radiance> {
+        let clamp = |t: f64| t.clamp(0.0, FRAC_PI_2 - HORIZON_MARGIN);
+        // Distinct view zeniths, in first-seen order.
+        let mut zeniths: Vec<f64> = Vec::new();
+        let mut index = HashMap::new();
+        let zi: Vec<usize> = views
+            .iter()
+            .map(|&(t, p)| {
+                assert!(t.is_finite() && p.is_finite(), "view ({t}, {p}) not finite");
+                *index.entry(clamp(t).to_bits()).or_insert_with(|| {
+                    zeniths.push(clamp(t));
+                    zeniths.len() - 1
+                })
+            })
+            .collect();
+        let terms = self.terms(&zeniths);
+        // Per distinct zenith: emitted and reflected, summed over the spectral nodes.
+        let zero = Stokes([0.0; 4]);
+        let mut emitted = vec![zero; zeniths.len()];
+        let mut reflected = vec![zero; zeniths.len()];
+        let mut path = 0.0;
+        for (j, (lambda, w, _)) in self.nodes.iter().enumerate() {
+            let b = self
+                .scene
+                .surface_temperature_k
+                .map_or(0.0, |t| planck(*lambda, t));
+            let uniform = self.scene.sky.uniform_at(*lambda);
+            for (z, row) in terms.iter().enumerate() {
+                let ZenithTerms {
+                    eps: e,
+                    profile_reflection,
+                } = row[j];
+                emitted[z] = emitted[z].combine(1.0, &e, w * b);
+                let r = match uniform {
+                    Some(l) => Stokes([l * (1.0 - e.0[0]), -l * e.0[1], -l * e.0[2], -l * e.0[3]]),
+                    None => profile_reflection,
+                };
+                reflected[z] = reflected[z].combine(1.0, &r, *w);
+            }
+            path += w * self.scene.atmosphere.path_radiance;
+        }
+        let tau = self.scene.atmosphere.transmittance;
+        views
+            .iter()
+            .zip(&zi)
+            .map(|(&(t, p), &z)| {
+                let mut s = emitted[z].combine(tau, &reflected[z], tau);
+                s.0[0] += path;
+                Radiance {
+                    theta_r: clamp(t),
+                    phi_r: p,
+                    stokes: s,
+                    emitted: emitted[z],
+                    reflected: reflected[z],
+                }
+            })
+            .collect()
+    }
+}
+
 /// The observed Stokes radiance of `spec` in `scene` at every view `(θr, φr)` (rad) of
-/// `views`, at one wavelength or integrated over a band ([`Spectrum::integral_nodes`]). The
-/// emissivity is computed once per distinct view zenith and spectral node (the model is
-/// isotropic).
+/// `views`, at one wavelength or integrated over a band ([`Spectrum::integral_nodes`]): an
+/// [`Observer`] observing once.
 ///
 /// # Errors
-/// As [`ThermalScene::validate`]; [`Error::WavelengthOutOfRange`] where the band leaves a
-/// spectral index's data; [`Error::InvalidAngle`] for a view at or below the horizon;
-/// [`Error::InconsistentParameters`] for the `paper` form (no emissivity).
+/// As [`Observer::new`]; [`Error::InvalidAngle`] for a view outside `[0, π/2)` or a
+/// non-finite azimuth (with its position).
 pub fn observed_radiance(
     spec: &MaterialSpec,
     scene: &ThermalScene,
     spectrum: &Spectrum,
     views: &[(f64, f64)],
 ) -> Result<Vec<Radiance>> {
-    scene.validate()?;
-    let nodes = spectrum.integral_nodes(&[spec]);
-    let materials = Spectrum::materials(spec, &nodes)?;
-    // Distinct view zeniths, in first-seen order.
-    let mut zeniths: Vec<f64> = Vec::new();
-    let mut zi = Vec::with_capacity(views.len());
-    for &(t, p) in views {
-        if !p.is_finite() {
-            return Err(Error::InvalidAngle {
-                name: "phi_r",
-                value: p,
-                degrees: false,
-                index: Some(zi.len()),
-                problem: crate::error::AngleProblem::NotFinite,
-            });
-        }
-        let k = zeniths.iter().position(|z| *z == t).unwrap_or_else(|| {
-            zeniths.push(t);
-            zeniths.len() - 1
+    for (i, &(t, p)) in views.iter().enumerate() {
+        let (name, value, problem) = if !p.is_finite() {
+            ("phi_r", p, crate::error::AngleProblem::NotFinite)
+        } else if !(t.is_finite() && (0.0..FRAC_PI_2).contains(&t)) {
+            ("theta_r", t, crate::error::AngleProblem::ViewBelowHorizon)
+        } else {
+            continue;
+        };
+        return Err(Error::InvalidAngle {
+            name,
+            value,
+            degrees: false,
+            index: Some(i),
+            problem,
         });
-        zi.push(k);
     }
-    let zero = Stokes([0.0; 4]);
-    let mut emitted = vec![zero; views.len()];
-    let mut reflected = vec![zero; views.len()];
-    let mut path = 0.0;
-    for ((lambda, w), m) in nodes.iter().zip(&materials) {
-        let eps: Vec<Emissivity> = emissivities(m, &zeniths)?;
-        let b = scene
-            .surface_temperature_k
-            .map_or(0.0, |t| planck(*lambda, t));
-        let uniform = scene.sky.uniform_at(*lambda);
-        for (k, &(t, p)) in views.iter().enumerate() {
-            let e = &eps[zi[k]].eps;
-            emitted[k] = emitted[k].combine(1.0, e, w * b);
-            let r = match (uniform, &scene.sky) {
-                (Some(l), _) => Stokes([l * (1.0 - e.0[0]), -l * e.0[1], -l * e.0[2], -l * e.0[3]]),
-                (None, SkyModel::Profile(profile)) => sky_reflection(
-                    m,
-                    t,
-                    p,
-                    &ProfileSky {
-                        profile: profile.clone(),
-                        scale: 1.0,
-                    },
-                )?,
-                (None, _) => unreachable!("only a profile sky is not uniform"),
-            };
-            reflected[k] = reflected[k].combine(1.0, &r, *w);
-        }
-        path += w * scene.atmosphere.path_radiance;
-    }
-    let tau = scene.atmosphere.transmittance;
-    Ok(views
+    Ok(Observer::new(spec, scene, spectrum)?.observe(views))
+}
+
+/// The surface temperature (K) at which, under a uniform sky (`uniform` or `thermal`), the
+/// emitted and reflected polarizations cancel: the T with `∫ R·B_λ(T) dλ = ∫ R·L_d dλ` over
+/// the spectrum. Exact in every direction at one wavelength and for a `thermal` sky
+/// (`B_λ(T) = L_d` at every λ: T = T_sky); for a `uniform` sky over a band it is the
+/// band-radiance match, exact only where the emissivity's polarization does not change across
+/// the band (the polarized part is `∫ R·(B_λ(T) − L_d)·ε_lin(λ) dλ`). `None` for a
+/// non-uniform sky, or no sky radiance at all.
+pub fn null_temperature(sky: &SkyModel, spectrum: &Spectrum) -> Option<f64> {
+    let nodes = spectrum.integral_nodes(&[]);
+    let sky_band: f64 = nodes
         .iter()
-        .enumerate()
-        .map(|(k, &(t, p))| {
-            let mut s = emitted[k].combine(tau, &reflected[k], tau);
-            s.0[0] += path;
-            Radiance {
-                theta_r: t,
-                phi_r: p,
-                stokes: s,
-                emitted: emitted[k],
-                reflected: reflected[k],
-            }
-        })
-        .collect())
+        .map(|(l, w)| w * sky.uniform_at(*l).unwrap_or(f64::NAN))
+        .sum();
+    if sky_band.is_nan() || sky_band <= 0.0 {
+        return None;
+    }
+    let band = |t: f64| -> f64 { nodes.iter().map(|(l, w)| w * planck(*l, t)).sum() };
+    // Bisection in ln T over 1 K … 10⁶ K (the band radiance increases with T).
+    let (mut lo, mut hi) = (0.0f64, 6.0 * std::f64::consts::LN_10);
+    if band(hi.exp()) < sky_band {
+        return None;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if band(mid.exp()) < sky_band {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some((0.5 * (lo + hi)).exp())
 }

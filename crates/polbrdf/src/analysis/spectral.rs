@@ -116,6 +116,31 @@ impl Band {
         y[i - 1] + (y[i] - y[i - 1]) * t
     }
 
+    /// Checks a quadrature step (µm): finite, > 0, and not so small that the band would be
+    /// split into more than 10⁵ pieces (a step that small is a typo, and would exhaust memory).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] naming `band_step_um`.
+    pub fn check_step(&self, step: f64) -> Result<f64> {
+        let (lo, hi) = self.range();
+        if !(step.is_finite() && step > 0.0) {
+            return Err(Error::InvalidParameter {
+                name: "band_step_um",
+                value: step,
+                reason: "must be finite and > 0 (µm)",
+            });
+        }
+        if (hi - lo) / step > 1e5 {
+            return Err(Error::InvalidParameter {
+                name: "band_step_um",
+                value: step,
+                reason: "splits the band into more than 10⁵ pieces: give a step of at least \
+                         1e-5 of the band's width",
+            });
+        }
+        Ok(step)
+    }
+
     /// The default quadrature step: 1/16 of the band's width.
     pub fn default_step(&self) -> f64 {
         let (lo, hi) = self.range();

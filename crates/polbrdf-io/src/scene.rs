@@ -1,0 +1,791 @@
+//! Scene files: what a surface sees, for `polbrdf radiance` and `polbrdf contrast --scene` —
+//! the spectrum (one wavelength or a band), the surface's temperature, a target and a
+//! background, the sky and the atmosphere ([`polbrdf::analysis::scene`]).
+//!
+//! Flat-ish TOML; every key is optional unless stated, and every unknown key or table is an
+//! error naming file, line and key:
+//!
+//! ```toml
+//! wavelength_um = 10.0    # one wavelength (µm) ... (exactly one of the two is required)
+//! [band]                  # ... or a band
+//! response = "lwir.csv"   # a band CSV (wavelength_um,response), required in [band]
+//! step_um = 0.05          # the quadrature step (µm, finite, > 0; default 1/16 of the band)
+//!
+//! [surface]               # the surface of `polbrdf radiance`
+//! temperature_k = 300     # absent: no thermal emission
+//!
+//! [target]                # for `polbrdf contrast --scene`
+//! material = "paint.toml" # a material file or a preset name
+//! temperature_k = 300
+//! [background]            # the same keys as [target]
+//!
+//! [sky]
+//! model = "none"          # "none" (default) | "uniform" | "thermal" | "profile"
+//! radiance = 1.5          # uniform: spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹ (finite, ≥ 0)
+//! temperature_k = 250     # thermal: brightness temperature (K, finite, > 0)
+//! file = "sky.csv"        # profile: a CSV with columns zenith_deg,radiance
+//!
+//! [atmosphere]
+//! transmittance = 0.9     # in [0, 1], default 1
+//! path_radiance = 0.2     # W·m⁻²·sr⁻¹·µm⁻¹, ≥ 0, default 0
+//! ```
+//!
+//! A sky model takes only its own keys (`radiance` with `model = "thermal"` is an error naming
+//! the model it belongs to) and requires them. Temperatures must be finite and > 0 K. The files
+//! a scene names (band, sky profile, materials) are found relative to the scene file's folder;
+//! their errors name that file and its line, inside an error naming the scene file and the line
+//! of the key that names it. A material that is no existing file is a preset name. Dotted keys
+//! (`sky.model = "uniform"`) are not accepted: write the table out.
+//!
+//! The reader is table-driven: `KEYS` lists every key with its kind, each table has one
+//! function, and the sky models are the rows of `SKY_MODELS` with one match on them. A new
+//! table (e.g. `[sun]`) is rows of `KEYS` and a function; a new sky model is a row of
+//! `SKY_MODELS`, its keys in `KEYS` and an arm of the match in `sky`.
+
+use crate::csv_io::{read_all, read_band_csv, read_sky_profile_csv};
+use crate::error::{Error, Result};
+use crate::material::load_material;
+use polbrdf::analysis::thermal::temperature;
+use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
+use polbrdf::{MaterialSpec, Spectrum};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use toml::{Spanned, Value};
+
+/// A target or a background of a scene (`[target]`, `[background]`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SceneObject {
+    /// Its material with a display name (the material's `name` key, else the file stem or the
+    /// preset name); `None` when the table names none.
+    pub material: Option<(MaterialSpec, String)>,
+    /// Its temperature (K, finite and > 0); `None` when not given.
+    pub temperature_k: Option<f64>,
+}
+
+/// A scene file, read and validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The scene file.
+    pub path: PathBuf,
+    /// One wavelength (`wavelength_um`) or a band with its quadrature step (`[band]`).
+    pub spectrum: Spectrum,
+    /// The surface temperature (`[surface]`), the sky (`[sky]`) and the atmosphere
+    /// (`[atmosphere]`); [`ThermalScene::validate`] holds.
+    pub thermal: ThermalScene,
+    /// `[target]`.
+    pub target: SceneObject,
+    /// `[background]`.
+    pub background: SceneObject,
+}
+
+/// What a key holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Number,
+    Text,
+    Table,
+}
+
+impl Kind {
+    fn word(self) -> &'static str {
+        match self {
+            Kind::Number => "a number",
+            Kind::Text => "a string",
+            Kind::Table => "a table",
+        }
+    }
+
+    fn holds(self, value: &Value) -> bool {
+        matches!(
+            (self, value),
+            (Kind::Number, Value::Float(_) | Value::Integer(_))
+                | (Kind::Text, Value::String(_))
+                | (Kind::Table, Value::Table(_))
+        )
+    }
+}
+
+/// One key of the format.
+#[derive(Debug)]
+struct Key {
+    /// Its dotted name, `table.key` inside a table (as messages and the core spell it).
+    name: &'static str,
+    kind: Kind,
+    /// What it holds, in words (for messages).
+    what: &'static str,
+}
+
+const fn key(name: &'static str, kind: Kind, what: &'static str) -> Key {
+    Key { name, kind, what }
+}
+
+/// Every key and table of a scene file, tables before their keys.
+const KEYS: &[Key] = &[
+    key("wavelength_um", Kind::Number, "one wavelength, µm"),
+    key(
+        "band",
+        Kind::Table,
+        "a band: [band] with response = \"FILE.csv\"",
+    ),
+    key(
+        "band.response",
+        Kind::Text,
+        "the path of a band CSV file with columns wavelength_um,response",
+    ),
+    key("band.step_um", Kind::Number, "the quadrature step, µm"),
+    key("surface", Kind::Table, "the surface of `polbrdf radiance`"),
+    key(
+        "surface.temperature_k",
+        Kind::Number,
+        "the surface temperature, K",
+    ),
+    key("target", Kind::Table, "the target of `polbrdf contrast`"),
+    key(
+        "target.material",
+        Kind::Text,
+        "a material file or a preset name",
+    ),
+    key("target.temperature_k", Kind::Number, "a temperature, K"),
+    key(
+        "background",
+        Kind::Table,
+        "the background of `polbrdf contrast`",
+    ),
+    key(
+        "background.material",
+        Kind::Text,
+        "a material file or a preset name",
+    ),
+    key("background.temperature_k", Kind::Number, "a temperature, K"),
+    key("sky", Kind::Table, "the sky"),
+    key("sky.model", Kind::Text, "a sky model"),
+    key(
+        "sky.radiance",
+        Kind::Number,
+        "the uniform sky's spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹",
+    ),
+    key(
+        "sky.temperature_k",
+        Kind::Number,
+        "the sky's brightness temperature, K",
+    ),
+    key(
+        "sky.file",
+        Kind::Text,
+        "the path of a sky profile CSV file with columns zenith_deg,radiance",
+    ),
+    key(
+        "atmosphere",
+        Kind::Table,
+        "the atmosphere between surface and sensor",
+    ),
+    key(
+        "atmosphere.transmittance",
+        Kind::Number,
+        "the transmittance, in [0, 1]",
+    ),
+    key(
+        "atmosphere.path_radiance",
+        Kind::Number,
+        "the path spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹",
+    ),
+];
+
+/// The table a dotted key belongs to (`None` at the top level) and its name inside it.
+fn split(name: &str) -> (Option<&str>, &str) {
+    match name.split_once('.') {
+        Some((table, key)) => (Some(table), key),
+        None => (None, name),
+    }
+}
+
+/// The key named `name` in `table` (`None`: the top level).
+fn known(table: Option<&str>, name: &str) -> Option<&'static Key> {
+    KEYS.iter().find(|k| split(k.name) == (table, name))
+}
+
+/// The names of the keys of `table` (without the table's prefix).
+fn keys_of(table: Option<&str>) -> Vec<&'static str> {
+    KEYS.iter()
+        .map(|k| split(k.name))
+        .filter(|(t, _)| *t == table)
+        .map(|(_, k)| k)
+        .collect()
+}
+
+/// Which sky a row of `SKY_MODELS` builds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SkyKind {
+    None,
+    Uniform,
+    Thermal,
+    Profile,
+}
+
+/// A sky model of `[sky] model = …` and the keys it takes besides `model`.
+#[derive(Debug)]
+struct SkyModelKeys {
+    /// The value of `model`.
+    name: &'static str,
+    kind: SkyKind,
+    /// Its keys (dotted names of `KEYS`); which of them are required is up to the model.
+    keys: &'static [&'static str],
+}
+
+/// The sky models, the default first.
+const SKY_MODELS: &[SkyModelKeys] = &[
+    SkyModelKeys {
+        name: "none",
+        kind: SkyKind::None,
+        keys: &[],
+    },
+    SkyModelKeys {
+        name: "uniform",
+        kind: SkyKind::Uniform,
+        keys: &["sky.radiance"],
+    },
+    SkyModelKeys {
+        name: "thermal",
+        kind: SkyKind::Thermal,
+        keys: &["sky.temperature_k"],
+    },
+    SkyModelKeys {
+        name: "profile",
+        kind: SkyKind::Profile,
+        keys: &["sky.file"],
+    },
+];
+
+/// 1-based line of byte offset `pos` in `text`.
+fn line_of(text: &str, pos: usize) -> usize {
+    text.as_bytes()[..pos.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// A TOML table with the position of every key and value.
+type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
+
+/// The keys of a scene file, checked against `KEYS` (known, of the right kind).
+struct Doc<'a> {
+    path: &'a Path,
+    /// The folder relative file names are found in (`None`: the working directory).
+    folder: Option<&'a Path>,
+    /// Every key given, by its dotted name: its line and its value (tables: an empty table,
+    /// their line that of their header).
+    found: BTreeMap<&'static str, (usize, Value)>,
+}
+
+impl<'a> Doc<'a> {
+    /// Reads the keys of `text` (BOM already stripped).
+    fn parse(text: &str, path: &'a Path) -> Result<Self> {
+        let mut doc = Doc {
+            path,
+            folder: path.parent().filter(|p| !p.as_os_str().is_empty()),
+            found: BTreeMap::new(),
+        };
+        let top: SpannedTable = toml::from_str(text).map_err(|e| doc.syntax(e, text, text))?;
+        // The top level, in file order. Then the tables' keys: `toml::Value` keeps no position
+        // inside a table, so the text is read a second time as tables of spanned keys, with
+        // the top-level values (which are no tables, once checked) blanked out — every byte
+        // but the line ends replaced by a space, so that positions stay those of `text`.
+        let mut values = Vec::new();
+        let mut top: Vec<_> = top.into_iter().collect();
+        top.sort_by_key(|(k, _)| k.span().start);
+        for (k, v) in top {
+            let key = doc.check(text, None, &k, v.get_ref())?;
+            let line = line_of(text, k.span().start);
+            if key.kind == Kind::Table {
+                doc.found.insert(key.name, (line, empty()));
+            } else {
+                values.push(k.span().start..v.span().end);
+                doc.found.insert(key.name, (line, v.into_inner()));
+            }
+        }
+        let mut blanked = String::with_capacity(text.len());
+        for (i, c) in text.char_indices() {
+            if c != '\n' && values.iter().any(|r| r.contains(&i)) {
+                blanked.extend(std::iter::repeat_n(' ', c.len_utf8()));
+            } else {
+                blanked.push(c);
+            }
+        }
+        let tables: BTreeMap<Spanned<String>, Spanned<SpannedTable>> =
+            toml::from_str(&blanked).map_err(|e| doc.syntax(e, &blanked, text))?;
+        let mut inner: Vec<(String, Spanned<String>, Spanned<Value>)> = tables
+            .into_iter()
+            .flat_map(|(t, table)| {
+                let t = t.into_inner();
+                table
+                    .into_inner()
+                    .into_iter()
+                    .map(move |(k, v)| (t.clone(), k, v))
+            })
+            .collect();
+        inner.sort_by_key(|(_, k, _)| k.span().start);
+        for (table, k, v) in inner {
+            let key = doc.check(text, Some(&table), &k, v.get_ref())?;
+            let line = line_of(text, k.span().start);
+            doc.found.insert(key.name, (line, v.into_inner()));
+        }
+        Ok(doc)
+    }
+
+    /// A TOML error of `toml` as a syntax error at the line of `original` (the same
+    /// positions).
+    fn syntax(&self, e: toml::de::Error, toml: &str, original: &str) -> Error {
+        // The one construct that is valid TOML but defeats the positions of keys.
+        let dotted = toml::from_str::<toml::Table>(toml).is_ok();
+        Error::Syntax {
+            path: self.path.to_path_buf(),
+            line: e.span().map_or(1, |s| line_of(original, s.start)),
+            message: if dotted {
+                "dotted keys (`table.key = …`) are not supported in scene files: write the table \
+                 out (`[table]`, then `key = …`)"
+                    .into()
+            } else if e.message().trim().is_empty() {
+                // The toml crate says nothing of a control character in a comment.
+                let c = e
+                    .span()
+                    .and_then(|s| original.get(s.start..)?.chars().next());
+                format!(
+                    "invalid character {:?}: TOML allows no control characters, not even in \
+                     comments",
+                    c.unwrap_or('?')
+                )
+            } else {
+                e.message().trim().to_string()
+            },
+        }
+    }
+
+    /// The known key `k` of `table` holding a value of its kind, or the error.
+    fn check(
+        &self,
+        text: &str,
+        table: Option<&str>,
+        k: &Spanned<String>,
+        value: &Value,
+    ) -> Result<&'static Key> {
+        let line = line_of(text, k.span().start);
+        let name = k.get_ref();
+        let Some(key) = known(table, name) else {
+            let is_table = matches!(value, Value::Table(_));
+            let (field, message) = match table {
+                None if is_table => (
+                    name.clone(),
+                    format!(
+                        "unknown table [{name}] (known tables: {})",
+                        tables_list(&keys_of(None))
+                    ),
+                ),
+                None => (
+                    name.clone(),
+                    format!(
+                        "unknown key (known: `wavelength_um` and the tables {})",
+                        tables_list(&keys_of(None))
+                    ),
+                ),
+                Some(t) => (
+                    format!("{t}.{name}"),
+                    format!(
+                        "unknown key in [{t}] (known keys: {})",
+                        keys_of(Some(t)).join(", ")
+                    ),
+                ),
+            };
+            return Err(Error::Field {
+                path: self.path.to_path_buf(),
+                line,
+                field,
+                message,
+            });
+        };
+        if !key.kind.holds(value) {
+            return Err(Error::Field {
+                path: self.path.to_path_buf(),
+                line,
+                field: key.name.to_string(),
+                message: format!(
+                    "expected {} ({}), got {}",
+                    key.kind.word(),
+                    key.what,
+                    value.type_str()
+                ),
+            });
+        }
+        Ok(key)
+    }
+
+    fn has(&self, key: &str) -> bool {
+        self.found.contains_key(key)
+    }
+
+    /// The line of `key`, or of the nearest table of it that is given (1 when none is).
+    fn line(&self, key: &str) -> usize {
+        self.found
+            .get(key)
+            .or_else(|| split(key).0.and_then(|t| self.found.get(t)))
+            .map_or(1, |(line, _)| *line)
+    }
+
+    fn number(&self, key: &str) -> Option<f64> {
+        match self.found.get(key) {
+            Some((_, Value::Float(x))) => Some(*x),
+            Some((_, Value::Integer(i))) => Some(*i as f64),
+            _ => None,
+        }
+    }
+
+    fn text(&self, key: &str) -> Option<&str> {
+        match self.found.get(key) {
+            Some((_, Value::String(s))) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// An error of the value of `key`, at its line.
+    fn error(&self, key: &str, message: impl Into<String>) -> Error {
+        Error::Field {
+            path: self.path.to_path_buf(),
+            line: self.line(key),
+            field: key.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// A core error, at the line of the key it names.
+    fn core_error(&self, e: polbrdf::Error) -> Error {
+        match &e {
+            polbrdf::Error::InvalidParameter { name, .. } if self.has(name) => {
+                self.error(name, e.to_string())
+            }
+            _ => Error::File {
+                path: self.path.to_path_buf(),
+                message: e.to_string(),
+            },
+        }
+    }
+
+    /// `name` relative to the scene file's folder (unless absolute).
+    fn resolve(&self, name: &str) -> PathBuf {
+        match self.folder {
+            Some(dir) if Path::new(name).is_relative() => dir.join(name),
+            _ => PathBuf::from(name),
+        }
+    }
+
+    /// The file that `key` names, read by `read`; its errors wrapped in one naming `key`.
+    /// `None` when `key` is absent.
+    fn read_file<T>(&self, key: &str, read: impl FnOnce(&Path) -> Result<T>) -> Result<Option<T>> {
+        let Some(name) = self.text(key) else {
+            return Ok(None);
+        };
+        if name.is_empty() {
+            return Err(self.error(key, "expected the path of a file, got an empty string"));
+        }
+        read(&self.resolve(name))
+            .map(Some)
+            .map_err(|e| self.error(key, e.to_string()))
+    }
+
+    /// The number `key` that sky model `model` requires.
+    fn required_number(&self, model: &str, key: &str) -> Result<f64> {
+        self.number(key)
+            .ok_or_else(|| self.missing_for_model(model, key))
+    }
+
+    fn missing_for_model(&self, model: &str, key: &str) -> Error {
+        let what = KEYS.iter().find(|k| k.name == key).map_or("", |k| k.what);
+        self.error(
+            "sky.model",
+            format!(
+                "sky model \"{model}\" requires the key `{}` ({what})",
+                split(key).1
+            ),
+        )
+    }
+}
+
+fn empty() -> Value {
+    Value::Table(toml::Table::new())
+}
+
+fn tables_list(names: &[&str]) -> String {
+    names
+        .iter()
+        .filter(|n| known(None, n).is_some_and(|k| k.kind == Kind::Table))
+        .map(|n| format!("[{n}]"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `wavelength_um` or `[band]`: exactly one of them.
+fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
+    match (doc.number("wavelength_um"), doc.has("band")) {
+        (Some(_), true) => Err(doc.error(
+            "wavelength_um",
+            format!(
+                "give either `wavelength_um` (one wavelength) or a [band] table (line {}), not \
+                 both",
+                doc.line("band")
+            ),
+        )),
+        (None, false) => Err(Error::File {
+            path: doc.path.to_path_buf(),
+            message: "no spectrum: give `wavelength_um` (one wavelength, µm) or a [band] table \
+                      with response = \"FILE.csv\" (a band CSV file)"
+                .into(),
+        }),
+        (Some(l), false) => {
+            if !(l.is_finite() && l > 0.0) {
+                return Err(doc.error(
+                    "wavelength_um",
+                    format!("{l}: a wavelength must be finite and > 0 (µm)"),
+                ));
+            }
+            Ok(Spectrum::Wavelength(l))
+        }
+        (None, true) => {
+            let step = doc.number("band.step_um");
+            if let Some(s) = step {
+                if !(s.is_finite() && s > 0.0) {
+                    return Err(doc.error(
+                        "band.step_um",
+                        format!("{s}: a quadrature step must be finite and > 0 (µm)"),
+                    ));
+                }
+            }
+            let band = doc
+                .read_file("band.response", read_band_csv)?
+                .ok_or_else(|| {
+                    doc.error(
+                    "band",
+                    "missing required key `response` (the path of a band CSV file with columns \
+                     wavelength_um,response)",
+                )
+                })?;
+            if let Some(s) = step {
+                band.check_step(s).map_err(|e| {
+                    // The core names the option `band_step_um`; here the key is `step_um`.
+                    let (lo, hi) = band.range();
+                    let why = match e {
+                        polbrdf::Error::InvalidParameter { reason, .. } => reason.to_string(),
+                        other => other.to_string(),
+                    };
+                    doc.error(
+                        "band.step_um",
+                        format!("{s:?}: {why} (the band spans {lo}–{hi} µm)"),
+                    )
+                })?;
+            }
+            Ok(Spectrum::Band(band, step))
+        }
+    }
+}
+
+/// `[surface]`: the surface temperature (checked with the scene).
+fn surface(doc: &Doc<'_>) -> Option<f64> {
+    doc.number("surface.temperature_k")
+}
+
+/// The keys of `[target]` or `[background]`.
+struct ObjectKeys {
+    material: &'static str,
+    temperature_k: &'static str,
+}
+
+const TARGET: ObjectKeys = ObjectKeys {
+    material: "target.material",
+    temperature_k: "target.temperature_k",
+};
+
+const BACKGROUND: ObjectKeys = ObjectKeys {
+    material: "background.material",
+    temperature_k: "background.temperature_k",
+};
+
+/// `[target]` or `[background]`.
+fn object(doc: &Doc<'_>, keys: &ObjectKeys) -> Result<SceneObject> {
+    let temperature_k = doc
+        .number(keys.temperature_k)
+        .map(|t| temperature(keys.temperature_k, t).map_err(|e| doc.core_error(e)))
+        .transpose()?;
+    let material = doc
+        .text(keys.material)
+        .map(|arg| material(doc, keys.material, arg))
+        .transpose()?;
+    Ok(SceneObject {
+        material,
+        temperature_k,
+    })
+}
+
+/// The material `arg` of `key`: a material file relative to the scene file's folder if there
+/// is one, else a preset name (as [`load_material`]); with its display name.
+fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String)> {
+    if arg.is_empty() {
+        return Err(doc.error(
+            key,
+            "expected a material file or a preset name, got an empty string",
+        ));
+    }
+    let file = doc.resolve(arg);
+    let spec = if file.is_file() {
+        match file.to_str() {
+            Some(f) => load_material(f),
+            None => Err(Error::File {
+                path: file.clone(),
+                message: "the path is not valid UTF-8".into(),
+            }),
+        }
+    } else {
+        polbrdf::preset(arg).map_err(|_| Error::File {
+            path: file.clone(),
+            message: format!(
+                "no such file, and not a preset material (presets: {})",
+                polbrdf::presets::names().join(", ")
+            ),
+        })
+    }
+    .map_err(|e| doc.error(key, e.to_string()))?;
+    let name = spec.name.clone().unwrap_or_else(|| {
+        Path::new(arg)
+            .file_stem()
+            .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned())
+    });
+    Ok((spec, name))
+}
+
+/// `[sky]`: the model of `SKY_MODELS` (default `none`) with its keys only.
+fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
+    let name = doc.text("sky.model").unwrap_or(SKY_MODELS[0].name);
+    let Some(model) = SKY_MODELS.iter().find(|m| m.name == name) else {
+        return Err(doc.error(
+            "sky.model",
+            format!(
+                "unknown sky model {name:?} (known: {})",
+                SKY_MODELS
+                    .iter()
+                    .map(|m| format!("\"{}\"", m.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    };
+    // A key of another model, the first in the file.
+    let mut given: Vec<(usize, &str)> = KEYS
+        .iter()
+        .filter(|k| split(k.name).0 == Some("sky") && k.name != "sky.model")
+        .filter_map(|k| doc.found.get(k.name).map(|(line, _)| (*line, k.name)))
+        .collect();
+    given.sort();
+    if let Some((_, key)) = given.iter().find(|(_, k)| !model.keys.contains(k)) {
+        let owners: Vec<String> = SKY_MODELS
+            .iter()
+            .filter(|m| m.keys.contains(key))
+            .map(|m| format!("\"{}\"", m.name))
+            .collect();
+        let default = if doc.has("sky.model") {
+            ""
+        } else {
+            "the default, "
+        };
+        let its = if model.keys.is_empty() {
+            format!("{default}which takes no keys")
+        } else {
+            format!(
+                "{default}whose keys are {}",
+                model
+                    .keys
+                    .iter()
+                    .map(|k| split(k).1)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        return Err(doc.error(
+            key,
+            format!(
+                "`{}` is not a key of sky model \"{name}\" ({its}); it belongs to model = {}",
+                split(key).1,
+                owners.join(" or ")
+            ),
+        ));
+    }
+    Ok(match model.kind {
+        SkyKind::None => SkyModel::None,
+        SkyKind::Uniform => SkyModel::Uniform {
+            radiance: doc.required_number(name, "sky.radiance")?,
+        },
+        SkyKind::Thermal => SkyModel::Thermal {
+            temperature_k: doc.required_number(name, "sky.temperature_k")?,
+        },
+        SkyKind::Profile => SkyModel::Profile(
+            doc.read_file("sky.file", read_sky_profile_csv)?
+                .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
+        ),
+    })
+}
+
+/// `[atmosphere]`, with the defaults of [`Atmosphere`].
+fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
+    let d = Atmosphere::default();
+    Atmosphere {
+        transmittance: doc
+            .number("atmosphere.transmittance")
+            .unwrap_or(d.transmittance),
+        path_radiance: doc
+            .number("atmosphere.path_radiance")
+            .unwrap_or(d.path_radiance),
+    }
+}
+
+/// Parses a scene file's text; `path` names it in error messages, and its folder is where
+/// relative file names (band, sky profile, materials) are found.
+///
+/// # Errors
+/// [`Error::Syntax`] for malformed TOML (including duplicate keys and tables, and dotted
+/// keys); [`Error::Field`] naming the line and the key (`table.key`) for an unknown key or
+/// table, a wrong type, an invalid value, a key of another sky model, a missing required key
+/// or a file that cannot be read or parsed (the message then holds that file's own error);
+/// [`Error::File`] when neither `wavelength_um` nor `[band]` is given.
+pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let doc = Doc::parse(text, path)?;
+    let spectrum = spectrum(&doc)?;
+    let thermal = ThermalScene {
+        surface_temperature_k: surface(&doc),
+        sky: sky(&doc)?,
+        atmosphere: atmosphere(&doc),
+    };
+    thermal.validate().map_err(|e| doc.core_error(e))?;
+    Ok(Scene {
+        path: path.to_path_buf(),
+        spectrum,
+        thermal,
+        target: object(&doc, &TARGET)?,
+        background: object(&doc, &BACKGROUND)?,
+    })
+}
+
+/// Reads a scene file (`-`: standard input, relative file names then taken relative to the
+/// working directory) and parses it ([`parse_scene`]).
+///
+/// # Errors
+/// [`Error::Read`] if it cannot be read; [`Error::Syntax`] if it is not UTF-8 text; as
+/// [`parse_scene`].
+pub fn read_scene(path: &Path) -> Result<Scene> {
+    let bytes = read_all(path)?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let pos = e.utf8_error().valid_up_to();
+        Error::Syntax {
+            path: path.to_path_buf(),
+            line: line_of(&String::from_utf8_lossy(&e.as_bytes()[..pos]), pos),
+            message: "file is not valid UTF-8 text".into(),
+        }
+    })?;
+    parse_scene(&text, path)
+}
