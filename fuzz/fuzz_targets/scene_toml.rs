@@ -1,8 +1,10 @@
 //! Scene files: any bytes either parse into a scene that validates, at a finite wavelength
-//! above 0 (or over a valid band), or give an error naming the scene file and saying what is
-//! wrong; never a panic.
+//! above 0 (or over a valid band), with its sun above the horizon (angles in radians, a Stokes
+//! vector of s0 = 1) and a clear sky only with a sun, or give an error naming the scene file
+//! and saying what is wrong; never a panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
+use polbrdf::analysis::SkyModel;
 use polbrdf::Spectrum;
 use std::path::Path;
 
@@ -28,6 +30,38 @@ fuzz_target!(|data: &[u8]| {
                     assert!(lo.is_finite() && lo > 0.0 && hi.is_finite() && lo < hi);
                     assert!(step.is_none_or(|s| s.is_finite() && s > 0.0));
                 }
+            }
+            if let Some(sun) = &scene.thermal.sun {
+                assert!(
+                    (0.0..std::f64::consts::FRAC_PI_2).contains(&sun.zenith),
+                    "{sun:?}"
+                );
+                assert!(sun.azimuth.is_finite(), "{sun:?}");
+                assert!(
+                    sun.irradiance.is_finite() && sun.irradiance >= 0.0,
+                    "{sun:?}"
+                );
+                let [s0, s1, s2, s3] = sun.stokes.0;
+                assert!(
+                    s0 == 1.0 && s1.hypot(s2).hypot(s3) <= 1.0 + 1e-12,
+                    "{sun:?}"
+                );
+            }
+            match &scene.thermal.sky {
+                SkyModel::ClearSky {
+                    irradiance,
+                    dop_max,
+                } => {
+                    assert!(scene.thermal.sun.is_some(), "a clear sky without a sun");
+                    assert!(irradiance.is_finite() && *irradiance >= 0.0, "{irradiance}");
+                    assert!((0.0..=1.0).contains(dop_max), "{dop_max}");
+                }
+                SkyModel::Table(t) => {
+                    let (theta, phi) = t.grid();
+                    assert!(theta.first() == Some(&0.0) && theta.last() == Some(&90.0));
+                    assert!(phi.iter().all(|p| (0.0..360.0).contains(p)), "{phi:?}");
+                }
+                _ => {}
             }
             for t in [scene.target.temperature_k, scene.background.temperature_k]
                 .into_iter()

@@ -16,7 +16,9 @@ Units
   the reflected beam's s axis toward its p axis.
 - Thermal emission: wavelengths in **µm**, temperatures in **K**, spectral radiance in
   **W·m⁻²·sr⁻¹·µm⁻¹** (:func:`planck`, :func:`radiance` at one wavelength), band radiance in
-  **W·m⁻²·sr⁻¹** (:func:`radiance` over a band); emissivities are dimensionless.
+  **W·m⁻²·sr⁻¹** (:func:`radiance` over a band); emissivities are dimensionless. Daylight
+  (:func:`radiance` with ``sun=`` or ``sky="cie-clear"``): spectral irradiances in
+  **W·m⁻²·µm⁻¹**.
 
 Example
 -------
@@ -485,8 +487,8 @@ class Radiance(NamedTuple):
       shape ``views_shape + (4,)``.
     - ``emitted``: the thermal emission ``B_λ(λ, T)·ε`` at the surface (zero without
       ``temperature_k``), shape ``views_shape + (4,)``.
-    - ``reflected``: the sky reflected by the surface, ``∫_H F(w, w_r)·L_sky(w) cosθ dω``,
-      shape ``views_shape + (4,)``.
+    - ``reflected``: the sun and the sky reflected by the surface,
+      ``E·cosθs·F(w_s, w_r)·s + ∫_H F(w, w_r)·L_sky(w) cosθ dω``, shape ``views_shape + (4,)``.
     - ``dolp``: degree of linear polarization of ``stokes``, shape ``views_shape``.
     - ``aolp``: angle of linear polarization of ``stokes``, in degrees in (−90, 90] (radians
       with ``degrees=False``), from the s axis toward p; shape ``views_shape``.
@@ -648,6 +650,66 @@ def _table(
     return out[0], out[1]
 
 
+def _sun(
+    sun: tuple[float, float, float] | tuple[float, float, float, ArrayLike] | None,
+) -> tuple[float, float, float, tuple[float, float, float, float]] | None:
+    """The ``sun`` argument as ``(zenith, azimuth, irradiance, stokes)`` floats (unpolarized
+    when no Stokes vector is given; normalized and checked by the compiled half)."""
+    if sun is None:
+        return None
+    if isinstance(sun, (str, bytes)) or not isinstance(sun, Sequence) or len(sun) not in (3, 4):
+        raise TypeError(
+            "`sun` must be a tuple (zenith, azimuth, irradiance) or (zenith, azimuth, "
+            "irradiance, stokes)"
+        )
+    names = ("sun[0] (zenith)", "sun[1] (azimuth)", "sun[2] (irradiance)")
+    zenith, azimuth, irradiance = (_scalar(n, x) for n, x in zip(names, sun[:3]))
+    stokes = (1.0, 0.0, 0.0, 0.0)
+    if len(sun) == 4:
+        arr = np.asarray(sun[3])
+        if arr.dtype.kind not in "biuf":
+            raise TypeError(f"`sun[3] (stokes)` must hold real numbers, got dtype {arr.dtype}")
+        if arr.shape != (4,):
+            raise ValueError(
+                "`sun[3] (stokes)` must be a Stokes vector (s0, s1, s2, s3) of shape (4,), got "
+                f"shape {arr.shape}"
+            )
+        stokes = tuple(float(v) for v in arr)
+    return zenith, azimuth, irradiance, stokes  # type: ignore[return-value]
+
+
+def _sky_table(
+    t: tuple[ArrayLike, ArrayLike, ArrayLike] | None,
+) -> tuple[_F64, _F64, _F64] | None:
+    """The ``sky_table`` argument as contiguous float64 arrays: zenith angles, azimuths and the
+    Stokes radiances as ``(len(theta_deg)·len(phi_deg), 4)``, θ-major."""
+    if t is None:
+        return None
+    if isinstance(t, (str, bytes)) or not isinstance(t, Sequence) or len(t) != 3:
+        raise TypeError("`sky_table` must be a triple (theta_deg, phi_deg, stokes) of arrays")
+    out = []
+    for col, a in zip(("theta_deg", "phi_deg", "stokes"), t):
+        arr = np.asarray(a)
+        if arr.dtype.kind not in "biuf":
+            raise TypeError(f"`sky_table`: `{col}` must hold real numbers, got dtype {arr.dtype}")
+        out.append(arr)
+    theta, phi, stokes = out
+    for col, arr in (("theta_deg", theta), ("phi_deg", phi)):
+        if arr.ndim != 1:
+            raise ValueError(f"`sky_table`: `{col}` must be a 1-D array, got shape {arr.shape}")
+    expected = (theta.shape[0], phi.shape[0], 4)
+    if stokes.shape != expected:
+        raise ValueError(
+            "`sky_table`: `stokes` must have shape (len(theta_deg), len(phi_deg), 4) = "
+            f"{expected}, got {stokes.shape}"
+        )
+    return (
+        np.ascontiguousarray(theta, dtype=np.float64),
+        np.ascontiguousarray(phi, dtype=np.float64),
+        np.ascontiguousarray(stokes, dtype=np.float64).reshape(-1, 4),
+    )
+
+
 def radiance(
     material: Material,
     theta_r: ArrayLike,
@@ -664,23 +726,31 @@ def radiance(
     sky_profile: tuple[ArrayLike, ArrayLike] | None = None,
     transmittance: float = 1.0,
     path_radiance: float = 0.0,
+    sun: tuple[float, float, float] | tuple[float, float, float, ArrayLike] | None = None,
+    sky_irradiance: float | None = None,
+    dop_max: float = 0.75,
+    sky_table: tuple[ArrayLike, ArrayLike, ArrayLike] | None = None,
 ) -> Radiance:
-    """The observed Stokes radiance of a surface in a thermal scene: its own polarized
-    emission, the sky it reflects, and the atmosphere between it and the sensor (the core's
-    ``analysis::scene::observed_radiance``).
+    """The observed Stokes radiance of a surface in a scene: its own polarized emission, the
+    sun and the sky it reflects, and the atmosphere between it and the sensor (the core's
+    ``analysis::scene::observed_radiance``), vectorized over the views.
 
-    ``S(w_r) = B_λ(λ, T)·ε(w_r) + ∫_H F(w, w_r)·L_sky(w) cosθ dω`` and at the sensor
-    ``S_sensor = τ·S + L_path·(1, 0, 0, 0)``. For a uniform sky of radiance ``L_d`` (``"uniform"``,
-    or ``"thermal"`` with ``L_d = B_λ(λ, T_sky)``) the sky term is exactly ``L_d·(e0 − ε)`` by
-    Kirchhoff's law, so ``S = L_d·e0 + (B_λ(T) − L_d)·ε``: unpolarized when ``B_λ(T) = L_d``
-    (an isothermal enclosure), and S1 changes sign (AoLP turns by 90°) when the sky is the
-    brighter. A tabulated profile sky takes the general sky integral.
+    ``S(w_r) = B_λ(λ, T)·ε(w_r) + E·cosθs·F(w_s, w_r)·s + ∫_H F(w, w_r)·L_sky(w) cosθ dω`` and
+    at the sensor ``S_sensor = τ·S + L_path·(1, 0, 0, 0)``, with ``F`` the pBRDF
+    (:func:`mueller`), ``w_s`` the direction toward the sun, ``E`` its irradiance and ``s`` its
+    Stokes vector. For a uniform sky of radiance ``L_d`` (``"uniform"``, or ``"thermal"`` with
+    ``L_d = B_λ(λ, T_sky)``) the sky term is exactly ``L_d·(e0 − ε)`` by Kirchhoff's law, so
+    without a sun ``S = L_d·e0 + (B_λ(T) − L_d)·ε``: unpolarized when ``B_λ(T) = L_d`` (an
+    isothermal enclosure), and S1 changes sign (AoLP turns by 90°) when the sky is the
+    brighter. The other skies (``"profile"``, ``"cie-clear"``, ``"table"``) take the general
+    sky integral; ``"cie-clear"`` and ``"table"`` (and a sun) depend on the view azimuth.
 
     **Units**: radiances (``stokes``, ``emitted``, ``reflected``) are spectral radiances in
     **W·m⁻²·sr⁻¹·µm⁻¹** at one wavelength (``wavelength_um``), and band radiances
     ``∫ R(λ)·S(λ) dλ`` in **W·m⁻²·sr⁻¹** over a ``band`` (the Stokes vector is integrated, then
-    DoLP and AoLP taken of it). ``sky_radiance``, ``sky_profile``'s radiances and
-    ``path_radiance`` are spectral radiances (W·m⁻²·sr⁻¹·µm⁻¹), constant across a band.
+    DoLP and AoLP taken of it). ``sky_radiance``, ``sky_profile``'s and ``sky_table``'s
+    radiances and ``path_radiance`` are spectral radiances (W·m⁻²·sr⁻¹·µm⁻¹), the sun's and
+    ``sky_irradiance`` spectral irradiances (W·m⁻²·µm⁻¹), all constant across a band.
 
     Parameters
     ----------
@@ -705,7 +775,10 @@ def radiance(
     sky : str
         ``"none"`` (nothing to reflect), ``"uniform"`` (an unpolarized sky of radiance
         ``sky_radiance`` everywhere), ``"thermal"`` (a uniform sky radiating as a blackbody at
-        ``sky_temperature_k``) or ``"profile"`` (``sky_profile``, depending on the zenith angle).
+        ``sky_temperature_k``), ``"profile"`` (``sky_profile``, depending on the zenith angle),
+        ``"cie-clear"`` (the CIE standard clear sky, type 12, with Rayleigh polarization, for
+        the ``sun``'s position, scaled to ``sky_irradiance``) or ``"table"`` (a tabulated
+        Stokes sky, ``sky_table``).
     sky_radiance : float, optional
         For ``sky="uniform"`` only: W·m⁻²·sr⁻¹·µm⁻¹ (≥ 0).
     sky_temperature_k : float, optional
@@ -718,6 +791,30 @@ def radiance(
         Atmospheric transmittance τ in [0, 1] between surface and sensor (default 1).
     path_radiance : float
         Unpolarized path radiance added at the sensor, W·m⁻²·sr⁻¹·µm⁻¹ (≥ 0, default 0).
+    sun : (zenith, azimuth, irradiance) or (zenith, azimuth, irradiance, stokes), optional
+        A collimated source in the direction ``(zenith, azimuth)`` (toward the sun; in the
+        unit of the views: degrees, radians with ``degrees=False``; zenith in [0°, 90°)), of
+        spectral irradiance ``irradiance`` on a plane normal to its beam (W·m⁻²·µm⁻¹, ≥ 0) and
+        Stokes vector ``stokes`` (a length-4 sequence, normalized here to ``s0 = 1``, so only
+        its polarization matters; degree of polarization ≤ 1, up to 1e-9 above it taken as 1;
+        in the psps basis of the beam arriving at the surface, as a ``mueller`` input; default
+        unpolarized ``(1, 0, 0, 0)``). It adds ``E·cosθs·F(w_s, w_r)·s`` to ``reflected``.
+        ``None`` (default): no sun.
+    sky_irradiance : float, optional
+        For ``sky="cie-clear"`` only (and required there): the sky's horizontal spectral
+        irradiance ``∫_H L_sky cosθ dω`` in W·m⁻²·µm⁻¹ (≥ 0), the sun's beam excluded.
+    dop_max : float
+        For ``sky="cie-clear"`` only: the Rayleigh maximum degree of polarization δ_max in
+        [0, 1], reached 90° from the sun (default 0.75); the sky's DoLP is
+        ``δ_max·sin²γ/(1 + cos²γ)`` at angle γ from the sun, its E-vector normal to the plane
+        of sun, sky point and surface.
+    sky_table : (theta_deg, phi_deg, stokes), optional
+        For ``sky="table"`` only: zenith angles in **degrees** (whatever ``degrees`` says, as
+        in a scene file), strictly increasing from 0 to 90; azimuths in degrees, strictly
+        increasing in [0, 360); ``stokes`` of shape ``(len(theta_deg), len(phi_deg), 4)``: the
+        Stokes radiance (W·m⁻²·sr⁻¹·µm⁻¹; ``s0 ≥ 0``, degree of polarization ≤ 1) arriving
+        from ``(theta_deg[j], phi_deg[k])`` in that arriving beam's psps basis (propagation
+        ``k = −w``, ``s = unit(z × k)``), bilinear between the nodes and periodic in azimuth.
 
     Returns
     -------
@@ -730,11 +827,16 @@ def radiance(
     ValueError
         For a view angle NaN/inf or a zenith outside [0°, 90°) (naming the argument, the value
         and the flat index); both or neither of ``wavelength_um`` and ``band``; a sky argument
-        missing for its model or given to another model; an unknown sky model; an invalid
-        temperature, radiance, transmittance, band or profile (naming the argument); a
-        wavelength outside a spectral index's data; the ``paper`` form (the core's message).
+        missing for its model or given to another model (``dop_max`` other than 0.75 counts as
+        given); an unknown sky model; ``sky="cie-clear"`` without a ``sun``; a sun at or below
+        the horizon, a negative irradiance, a Stokes vector with ``s0 ≤ 0``, of a degree of
+        polarization above 1 or not of length 4; an invalid temperature, radiance,
+        transmittance, band, profile, ``dop_max`` or sky table (naming the argument, and for a
+        table the offending entry); a wavelength outside a spectral index's data; the
+        ``paper`` form (the core's message).
     TypeError
-        For a non-Material ``material`` or non-real arguments.
+        For a non-Material ``material``, non-real arguments, or a ``sun`` / ``sky_table`` that
+        is not a tuple of 3–4 / 3 entries.
     """
     _check_material(material)
     shape, flat = _broadcast(("theta_r", "phi_r"), (theta_r, phi_r))
@@ -755,6 +857,10 @@ def radiance(
         "sky_profile": _table("sky_profile", sky_profile, ("zenith_deg", "radiance")),
         "transmittance": _scalar("transmittance", transmittance),
         "path_radiance": _scalar("path_radiance", path_radiance),
+        "sun": _sun(sun),
+        "sky_irradiance": _scalar("sky_irradiance", sky_irradiance),
+        "dop_max": _scalar("dop_max", dop_max),
+        "sky_table": _sky_table(sky_table),
     }
     try:
         s, em, re, d, a = _polbrdf.radiance_flat(material, flat[0], flat[1], degrees, **kwargs)

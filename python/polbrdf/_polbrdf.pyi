@@ -211,6 +211,11 @@ def radiance_flat(
     sky_profile: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
     transmittance: float = 1.0,
     path_radiance: float = 0.0,
+    sun: tuple[float, float, float, tuple[float, float, float, float]] | None = None,
+    sky_irradiance: float | None = None,
+    dop_max: float = 0.75,
+    sky_table: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+    | None = None,
 ) -> tuple[
     NDArray[np.float64],
     NDArray[np.float64],
@@ -219,7 +224,9 @@ def radiance_flat(
     NDArray[np.float64],
 ]:
     """Observed Stokes radiance at n views: stokes, emitted, reflected (n, 4), dolp, aolp (n);
-    W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band."""
+    W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band. ``sun`` = (zenith, azimuth
+    (unit of the views), irradiance W·m⁻²·µm⁻¹, stokes normalized here to s0 = 1);
+    ``sky_table`` = (theta_deg, phi_deg, stokes (n_theta·n_phi, 4), θ-major)."""
 
 class FitResult:
     """The outcome of :func:`polbrdf.fit`: fitted parameters with their uncertainties."""

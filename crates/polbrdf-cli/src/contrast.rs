@@ -162,7 +162,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 ("target", scene.target.temperature_k),
                 ("background", scene.background.temperature_k),
             ] {
-                if t.is_none() {
+                // Only where emission matters: from 3 µm on (at 300 K, B_λ at 3 µm is already
+                // 1e-3 of its peak; in the visible it is below 1e-20).
+                let longest = match &scene.spectrum {
+                    polbrdf::Spectrum::Wavelength(l) => *l,
+                    polbrdf::Spectrum::Band(b, _) => b.range().1,
+                };
+                if t.is_none() && longest >= 3.0 {
                     eprintln!(
                         "polbrdf contrast: note: {}: [{table}] has no temperature_k, so the \
                          {table} emits nothing (it only reflects the sky)",
@@ -229,11 +235,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let (t_name, b_name) = &names;
     let names = (t_name.as_str(), b_name.as_str());
     let scene = matches!(setting, Setting::Scene(_));
+    // The null locus is where S1 changes sign while S2 vanishes identically: in scenes
+    // symmetric about the normal. Under a sun or an azimuth-dependent sky an S1 sign change
+    // is the AoLP turning through ±45°, no null: none is drawn or listed.
     let nulls = scene.then(|| {
-        (
-            polarization_null(&map, true),
-            polarization_null(&map, false),
-        )
+        if problem.is_azimuth_independent() {
+            (
+                polarization_null(&map, true),
+                polarization_null(&map, false),
+            )
+        } else {
+            (Vec::new(), Vec::new())
+        }
     });
     let mut files = vec![
         ("contrast.csv".to_string(), contrast_csv(&map, scene)),
@@ -283,7 +296,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         grid.len(),
         elapsed.as_secs_f64() * 1e3
     );
-    if let (Setting::Scene(s), Some((nt, nb))) = (&setting, &nulls) {
+    if let (Setting::Scene(s), Some((nt, nb)), true) =
+        (&setting, &nulls, problem.is_azimuth_independent())
+    {
         let t = polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum);
         println!(
             "  polarization null: {} direction(s) on the target's map, {} on the background's{}",
@@ -422,8 +437,10 @@ fn best_json(
     (t_arg, b_arg): &(String, String),
     nulls: Option<&NullLoci>,
 ) -> Vec<u8> {
-    // Every sky of a scene is azimuth-independent (`Contrast::is_azimuth_independent`).
-    let azimuth_independent = matches!(setting, Setting::Scene(_));
+    // As `Contrast::is_azimuth_independent`: a scene without a sun, under a sky that is the
+    // same at every azimuth.
+    let azimuth_independent =
+        matches!(setting, Setting::Scene(s) if s.thermal.is_azimuth_independent());
     let mut doc = json!({
         "best": top.first().map(entry),
         "top": top.iter().map(entry).collect::<Vec<_>>(),
@@ -457,7 +474,9 @@ fn best_json(
         }
         Setting::Scene(s) => {
             let nodes = s.spectrum.integral_nodes(&[]).len();
-            let null_t = polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum);
+            let null_t = azimuth_independent
+                .then(|| polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum))
+                .flatten();
             let locus = |v: &[(f64, f64)]| -> Vec<Value> {
                 v.iter()
                     .map(|(t, p)| json!([num(deg(*t)), num(deg(*p))]))
@@ -482,7 +501,11 @@ fn best_json(
             }
             if let Some((nt, nb)) = nulls {
                 doc["polarization_null"] = json!({
-                    "what": "view directions (theta_r_deg, phi_r_deg) where S1 changes sign: the emitted and reflected polarizations cancel",
+                    "what": if azimuth_independent {
+                        "view directions (theta_r_deg, phi_r_deg) where S1 changes sign: the emitted and reflected polarizations cancel"
+                    } else {
+                        "none computed: with a sun or an azimuth-dependent sky S2 does not vanish, and an S1 sign change is the AoLP turning through ±45°, not a null"
+                    },
                     "target": locus(nt),
                     "background": locus(nb),
                     "uniform_sky_null_temperature_k": null_t.map(num),
@@ -718,6 +741,16 @@ fn sky_json(sky: &polbrdf::analysis::SkyModel) -> Value {
         SkyModel::Profile(p) => {
             let (z, l) = p.table();
             json!({"model": "profile", "zenith_deg": z, "radiance": l})
+        }
+        SkyModel::ClearSky {
+            irradiance,
+            dop_max,
+        } => {
+            json!({"model": "cie-clear", "irradiance": num(*irradiance), "dop_max": num(*dop_max)})
+        }
+        SkyModel::Table(t) => {
+            let (z, p) = t.grid();
+            json!({"model": "table", "theta_deg": z, "phi_deg": p})
         }
     }
 }

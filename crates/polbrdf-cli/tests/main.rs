@@ -5,6 +5,7 @@ mod bad_inputs;
 mod bench;
 mod common;
 mod contrast;
+mod daylight;
 mod emission;
 mod eval;
 mod fit;

@@ -187,6 +187,16 @@ pub(crate) fn parse_number(path: &Path, line: usize, column: &str, field: &str) 
     })
 }
 
+/// A number in a message: as it would be written, in exponent form when very large or small
+/// (as the core's messages show values).
+pub(crate) fn show(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn truncate(s: &str) -> String {
     if s.chars().count() > 40 {
         s.chars().take(40).collect::<String>() + "…"
@@ -299,7 +309,13 @@ pub fn parse_band_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::Band> {
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    polbrdf::Band::new(&name, wl, response).map_err(|e| match e {
+    polbrdf::Band::new(&name, wl, response).map_err(|e| row_error(path, &lines, e))
+}
+
+/// A core error about the row `index` of a table (`InvalidParameterAt`) at that row's line;
+/// any other as an error of the whole file.
+fn row_error(path: &Path, lines: &[usize], e: polbrdf::Error) -> Error {
+    match e {
         polbrdf::Error::InvalidParameterAt { name, index, .. } => Error::Field {
             path: path.to_path_buf(),
             line: lines[index],
@@ -310,7 +326,7 @@ pub fn parse_band_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::Band> {
             path: path.to_path_buf(),
             message: other.to_string(),
         },
-    })
+    }
 }
 
 /// The columns of a sky profile file: the zenith angle of a sky point (degrees) and the sky's
@@ -357,13 +373,166 @@ pub fn parse_sky_profile_csv(
             &row[index[1]],
         )?);
     }
-    polbrdf::analysis::sky::ZenithProfile::new(zenith, radiance).map_err(|e| match e {
-        polbrdf::Error::InvalidParameterAt { name, index, .. } => Error::Field {
+    polbrdf::analysis::sky::ZenithProfile::new(zenith, radiance)
+        .map_err(|e| row_error(path, &lines, e))
+}
+
+/// The columns of a sky table file: the direction of a sky point (zenith angle and azimuth,
+/// degrees) and the Stokes radiance arriving from it, in the arriving beam's psps basis.
+pub const SKY_TABLE_COLUMNS: [&str; 6] = ["theta_deg", "phi_deg", "s0", "s1", "s2", "s3"];
+
+/// Reads a sky table file (CSV with columns `theta_deg, phi_deg, s0, s1, s2, s3` in any order,
+/// other columns ignored; [`polbrdf::analysis::sky::TableSky`]): the Stokes radiance of a sky
+/// on a full grid of zenith angles × azimuths. The rows may come in any order; the grid is
+/// made of the distinct zenith angles (which must include 0° and 90°) and the distinct
+/// azimuths (in `[0°, 360°)`: the table is periodic, 360° is 0°), and every node of it must be
+/// given exactly once.
+///
+/// # Errors
+/// [`Error::Field`] naming the file, the line and the column for a malformed value, an angle
+/// out of range, a non-finite Stokes parameter, `s0 < 0` or a degree of polarization above 1,
+/// and for a node given twice (naming both lines); [`Error::File`] for a missing column, a
+/// file without rows, a grid with a hole (naming the missing node and the grid) or zenith
+/// angles that do not span 0° to 90°.
+pub fn read_sky_table_csv(path: &Path) -> Result<polbrdf::analysis::sky::TableSky> {
+    parse_sky_table_csv(&read_all(path)?, path)
+}
+
+/// Parses sky table CSV bytes ([`read_sky_table_csv`]); `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_sky_table_csv`].
+pub fn parse_sky_table_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::analysis::sky::TableSky> {
+    let RawTable {
+        rows, lines, index, ..
+    } = parse_table(bytes, path, &SKY_TABLE_COLUMNS)?;
+    let field = |line: usize, column: &str, message: String| Error::Field {
+        path: path.to_path_buf(),
+        line,
+        field: column.to_string(),
+        message,
+    };
+    if rows.is_empty() {
+        return Err(Error::File {
             path: path.to_path_buf(),
-            line: lines[index],
-            field: name.to_string(),
-            message: e.to_string(),
-        },
+            message: "no rows (the file has a header but no sky nodes)".into(),
+        });
+    }
+    // Every row's values, its angles checked (−0 read as 0).
+    let mut values = Vec::with_capacity(rows.len());
+    for (row, &line) in rows.iter().zip(&lines) {
+        let mut v = [0.0; 6];
+        for (k, x) in v.iter_mut().enumerate() {
+            *x = parse_number(path, line, SKY_TABLE_COLUMNS[k], &row[index[k]])? + 0.0;
+        }
+        if !(v[0].is_finite() && (0.0..=90.0).contains(&v[0])) {
+            return Err(field(
+                line,
+                SKY_TABLE_COLUMNS[0],
+                format!("{}: a zenith angle must lie in [0°, 90°]", show(v[0])),
+            ));
+        }
+        if !(v[1].is_finite() && (0.0..360.0).contains(&v[1])) {
+            return Err(field(
+                line,
+                SKY_TABLE_COLUMNS[1],
+                format!(
+                    "{}: an azimuth must lie in [0°, 360°) (the table is periodic in azimuth: \
+                     give 360° as 0°, once)",
+                    show(v[1])
+                ),
+            ));
+        }
+        values.push(v);
+    }
+    let distinct = |k: usize| {
+        let mut a: Vec<f64> = values.iter().map(|v| v[k]).collect();
+        a.sort_by(f64::total_cmp);
+        a.dedup();
+        a
+    };
+    let (theta, phi) = (distinct(0), distinct(1));
+    let (nt, np) = (theta.len(), phi.len());
+    let position = |a: &[f64], x: f64| a.binary_search_by(|v| v.total_cmp(&x)).expect("in it");
+    // The row of each node, θ-major.
+    let mut node_row: Vec<Option<usize>> = vec![None; nt * np];
+    for (r, v) in values.iter().enumerate() {
+        let node = position(&theta, v[0]) * np + position(&phi, v[1]);
+        if let Some(first) = node_row[node] {
+            return Err(field(
+                lines[r],
+                "theta_deg,phi_deg",
+                format!(
+                    "the node (theta_deg = {}, phi_deg = {}) is given twice: at lines {} and {}",
+                    show(v[0]),
+                    show(v[1]),
+                    lines[first],
+                    lines[r]
+                ),
+            ));
+        }
+        node_row[node] = Some(r);
+    }
+    if let Some(hole) = node_row.iter().position(Option::is_none) {
+        let missing = node_row.iter().filter(|r| r.is_none()).count();
+        let list = |a: &[f64]| {
+            let shown: Vec<String> = if a.len() <= 12 {
+                a.iter().map(|x| show(*x)).collect()
+            } else {
+                a[..5]
+                    .iter()
+                    .map(|x| show(*x))
+                    .chain(["…".to_string()])
+                    .chain(a[a.len() - 5..].iter().map(|x| show(*x)))
+                    .collect()
+            };
+            shown.join(", ")
+        };
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "the sky table has a hole: no row for the node (theta_deg = {}, phi_deg = {}); \
+                 the grid of its zenith angles [{}] × azimuths [{}] has {} nodes, each needed \
+                 once, and {} of them {} missing ({} rows given)",
+                show(theta[hole / np]),
+                show(phi[hole % np]),
+                list(&theta),
+                list(&phi),
+                nt * np,
+                missing,
+                if missing == 1 { "is" } else { "are" },
+                rows.len()
+            ),
+        });
+    }
+    let order: Vec<usize> = node_row.into_iter().map(|r| r.expect("no hole")).collect();
+    let stokes = order
+        .iter()
+        .map(|&r| {
+            let v = values[r];
+            Stokes([v[2], v[3], v[4], v[5]])
+        })
+        .collect();
+    let nodes = (theta.clone(), phi.clone());
+    polbrdf::analysis::sky::TableSky::new(theta, phi, stokes).map_err(|e| match e {
+        // The Stokes parameters are indexed by node (the angles cannot be wrong here): the
+        // message names the node instead of its index.
+        polbrdf::Error::InvalidParameterAt {
+            name,
+            value,
+            index,
+            reason,
+        } if name.starts_with('s') && index < order.len() => field(
+            lines[order[index]],
+            name,
+            format!(
+                "invalid parameter `{name}` = {} (at the node theta_deg = {}, phi_deg = {}): \
+                 {reason}",
+                show(value),
+                show(nodes.0[index / np]),
+                show(nodes.1[index % np])
+            ),
+        ),
         other => Error::File {
             path: path.to_path_buf(),
             message: other.to_string(),

@@ -1,7 +1,7 @@
 //! File formats of polbrdf: material files (flat TOML), geometry and result CSV, refractive-index
 //! files of the refractiveindex.info database (YAML) with a built-in library of them, scene files
-//! (TOML, with band and sky profile CSV), and atomic output. Every error names the file, and
-//! where it applies the line and the field.
+//! (TOML, with band, sky profile and sky table CSV), and atomic output. Every error names the
+//! file, and where it applies the line and the field.
 
 #![warn(missing_docs)]
 
@@ -15,8 +15,9 @@ pub mod scene;
 pub mod write;
 
 pub use csv_io::{
-    parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_views_csv, read_band_csv,
-    read_geometry_csv, read_sky_profile_csv, read_views_csv, CsvTable, GeometryTable,
+    parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_sky_table_csv,
+    parse_views_csv, read_band_csv, read_geometry_csv, read_sky_profile_csv, read_sky_table_csv,
+    read_views_csv, CsvTable, GeometryTable,
 };
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};

@@ -1,6 +1,6 @@
 //! Scene files: what a surface sees, for `polbrdf radiance` and `polbrdf contrast --scene` —
 //! the spectrum (one wavelength or a band), the surface's temperature, a target and a
-//! background, the sky and the atmosphere ([`polbrdf::analysis::scene`]).
+//! background, the sun, the sky and the atmosphere ([`polbrdf::analysis::scene`]).
 //!
 //! Flat-ish TOML; every key is optional unless stated, and every unknown key or table is an
 //! error naming file, line and key:
@@ -19,11 +19,21 @@
 //! temperature_k = 300
 //! [background]            # the same keys as [target]
 //!
+//! [sun]                   # absent: no sun
+//! zenith_deg = 40         # required, in [0, 90): the sun above the horizon
+//! azimuth_deg = 0         # default 0
+//! irradiance = 1000       # required: W·m⁻²·µm⁻¹ on a plane normal to the beam (finite, ≥ 0)
+//! stokes = [1, 0, 0, 0]   # default unpolarized; any s0 > 0, DoP ≤ 1, normalized to s0 = 1
+//!
 //! [sky]
-//! model = "none"          # "none" (default) | "uniform" | "thermal" | "profile"
+//! model = "none"          # "none" (default) | "uniform" | "thermal" | "profile" |
+//!                         # "cie-clear" | "table"
 //! radiance = 1.5          # uniform: spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹ (finite, ≥ 0)
 //! temperature_k = 250     # thermal: brightness temperature (K, finite, > 0)
-//! file = "sky.csv"        # profile: a CSV with columns zenith_deg,radiance
+//! file = "sky.csv"        # profile: a CSV with columns zenith_deg,radiance;
+//!                         # table: a CSV with columns theta_deg,phi_deg,s0,s1,s2,s3
+//! irradiance = 50         # cie-clear: the sky's horizontal irradiance, W·m⁻²·µm⁻¹ (≥ 0)
+//! dop_max = 0.75          # cie-clear: the maximum degree of polarization, in [0, 1]
 //!
 //! [atmosphere]
 //! transmittance = 0.9     # in [0, 1], default 1
@@ -31,24 +41,30 @@
 //! ```
 //!
 //! A sky model takes only its own keys (`radiance` with `model = "thermal"` is an error naming
-//! the model it belongs to) and requires them. Temperatures must be finite and > 0 K. The files
-//! a scene names (band, sky profile, materials) are found relative to the scene file's folder;
-//! their errors name that file and its line, inside an error naming the scene file and the line
-//! of the key that names it. A material that is no existing file is a preset name. Dotted keys
+//! the model it belongs to) and requires them (`dop_max` has a default); `cie-clear` requires
+//! a `[sun]` too, for its position. A sky table's Stokes vectors are in the arriving beam's
+//! basis, on a full grid of zenith angles (0° to 90°) × azimuths (in [0°, 360°)), its rows
+//! in any order ([`crate::csv_io::read_sky_table_csv`]). Angles are in degrees here and in
+//! radians in [`Sun`]. Temperatures must be finite and > 0 K. The files a scene names (band,
+//! sky profile or table, materials) are found relative to the scene file's folder; their
+//! errors name that file and its line, inside an error naming the scene file and the line of
+//! the key that names it. A material that is no existing file is a preset name. Dotted keys
 //! (`sky.model = "uniform"`) are not accepted: write the table out.
 //!
 //! The reader is table-driven: `KEYS` lists every key with its kind, each table has one
 //! function, and the sky models are the rows of `SKY_MODELS` with one match on them. A new
-//! table (e.g. `[sun]`) is rows of `KEYS` and a function; a new sky model is a row of
-//! `SKY_MODELS`, its keys in `KEYS` and an arm of the match in `sky`.
+//! table is rows of `KEYS` and a function; a new sky model is a row of `SKY_MODELS`, its keys
+//! in `KEYS` and an arm of the match in `sky`.
 
-use crate::csv_io::{read_all, read_band_csv, read_sky_profile_csv};
+use crate::csv_io::{read_all, read_band_csv, read_sky_profile_csv, read_sky_table_csv, show};
 use crate::error::{Error, Result};
 use crate::material::load_material;
+use polbrdf::analysis::scene::Sun;
 use polbrdf::analysis::thermal::temperature;
 use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
-use polbrdf::{MaterialSpec, Spectrum};
+use polbrdf::{MaterialSpec, Spectrum, Stokes};
 use std::collections::BTreeMap;
+use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 use toml::{Spanned, Value};
 
@@ -69,8 +85,8 @@ pub struct Scene {
     pub path: PathBuf,
     /// One wavelength (`wavelength_um`) or a band with its quadrature step (`[band]`).
     pub spectrum: Spectrum,
-    /// The surface temperature (`[surface]`), the sky (`[sky]`) and the atmosphere
-    /// (`[atmosphere]`); [`ThermalScene::validate`] holds.
+    /// The surface temperature (`[surface]`), the sun (`[sun]`), the sky (`[sky]`) and the
+    /// atmosphere (`[atmosphere]`); [`ThermalScene::validate`] holds.
     pub thermal: ThermalScene,
     /// `[target]`.
     pub target: SceneObject,
@@ -82,6 +98,8 @@ pub struct Scene {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
     Number,
+    /// An array of numbers (of any length: the key's reader checks it).
+    Numbers,
     Text,
     Table,
 }
@@ -90,18 +108,38 @@ impl Kind {
     fn word(self) -> &'static str {
         match self {
             Kind::Number => "a number",
+            Kind::Numbers => "an array of numbers",
             Kind::Text => "a string",
             Kind::Table => "a table",
         }
     }
 
     fn holds(self, value: &Value) -> bool {
-        matches!(
-            (self, value),
-            (Kind::Number, Value::Float(_) | Value::Integer(_))
-                | (Kind::Text, Value::String(_))
-                | (Kind::Table, Value::Table(_))
-        )
+        match (self, value) {
+            (Kind::Numbers, Value::Array(a)) => a.iter().all(is_number),
+            _ => matches!(
+                (self, value),
+                (Kind::Number, Value::Float(_) | Value::Integer(_))
+                    | (Kind::Text, Value::String(_))
+                    | (Kind::Table, Value::Table(_))
+            ),
+        }
+    }
+}
+
+fn is_number(value: &Value) -> bool {
+    matches!(value, Value::Float(_) | Value::Integer(_))
+}
+
+/// What `value` is, for messages: its TOML type, and for an array where numbers are expected
+/// what it holds that is no number.
+fn type_of(kind: Kind, value: &Value) -> String {
+    match value {
+        Value::Array(a) if kind == Kind::Numbers => match a.iter().find(|v| !is_number(v)) {
+            Some(v) => format!("an array holding a {}", v.type_str()),
+            None => "array".into(),
+        },
+        v => v.type_str().into(),
     }
 }
 
@@ -157,6 +195,31 @@ const KEYS: &[Key] = &[
         "a material file or a preset name",
     ),
     key("background.temperature_k", Kind::Number, "a temperature, K"),
+    key(
+        "sun",
+        Kind::Table,
+        "the sun: [sun] with zenith_deg and irradiance",
+    ),
+    key(
+        "sun.zenith_deg",
+        Kind::Number,
+        "the sun's zenith angle, degrees, in [0, 90)",
+    ),
+    key(
+        "sun.azimuth_deg",
+        Kind::Number,
+        "the sun's azimuth, degrees",
+    ),
+    key(
+        "sun.irradiance",
+        Kind::Number,
+        "the sun's spectral irradiance on a plane normal to its beam, W·m⁻²·µm⁻¹",
+    ),
+    key(
+        "sun.stokes",
+        Kind::Numbers,
+        "the sun's Stokes vector [s0, s1, s2, s3]",
+    ),
     key("sky", Kind::Table, "the sky"),
     key("sky.model", Kind::Text, "a sky model"),
     key(
@@ -172,7 +235,18 @@ const KEYS: &[Key] = &[
     key(
         "sky.file",
         Kind::Text,
-        "the path of a sky profile CSV file with columns zenith_deg,radiance",
+        "the path of a CSV file: a sky profile with columns zenith_deg,radiance, or a sky table \
+         with columns theta_deg,phi_deg,s0,s1,s2,s3",
+    ),
+    key(
+        "sky.irradiance",
+        Kind::Number,
+        "the clear sky's horizontal spectral irradiance, W·m⁻²·µm⁻¹",
+    ),
+    key(
+        "sky.dop_max",
+        Kind::Number,
+        "the clear sky's maximum degree of polarization, in [0, 1]",
     ),
     key(
         "atmosphere",
@@ -220,6 +294,8 @@ enum SkyKind {
     Uniform,
     Thermal,
     Profile,
+    ClearSky,
+    Table,
 }
 
 /// A sky model of `[sky] model = …` and the keys it takes besides `model`.
@@ -254,7 +330,20 @@ const SKY_MODELS: &[SkyModelKeys] = &[
         kind: SkyKind::Profile,
         keys: &["sky.file"],
     },
+    SkyModelKeys {
+        name: "cie-clear",
+        kind: SkyKind::ClearSky,
+        keys: &["sky.irradiance", "sky.dop_max"],
+    },
+    SkyModelKeys {
+        name: "table",
+        kind: SkyKind::Table,
+        keys: &["sky.file"],
+    },
 ];
+
+/// The default `dop_max` of the `cie-clear` sky.
+const DEFAULT_DOP_MAX: f64 = 0.75;
 
 /// 1-based line of byte offset `pos` in `text`.
 fn line_of(text: &str, pos: usize) -> usize {
@@ -412,7 +501,7 @@ impl<'a> Doc<'a> {
                     "expected {} ({}), got {}",
                     key.kind.word(),
                     key.what,
-                    value.type_str()
+                    type_of(key.kind, value)
                 ),
             });
         }
@@ -437,6 +526,41 @@ impl<'a> Doc<'a> {
             Some((_, Value::Integer(i))) => Some(*i as f64),
             _ => None,
         }
+    }
+
+    fn numbers(&self, key: &str) -> Option<Vec<f64>> {
+        match self.found.get(key) {
+            Some((_, Value::Array(a))) => a
+                .iter()
+                .map(|v| match v {
+                    Value::Float(x) => Some(*x),
+                    Value::Integer(i) => Some(*i as f64),
+                    _ => None,
+                })
+                .collect(),
+            _ => None,
+        }
+    }
+
+    /// The number `key` that its table requires (its table is given).
+    fn required_in_table(&self, key: &str) -> Result<f64> {
+        self.number(key).ok_or_else(|| {
+            let (table, name) = split(key);
+            let what = KEYS.iter().find(|k| k.name == key).map_or("", |k| k.what);
+            self.error(
+                table.unwrap_or(key),
+                format!("missing required key `{name}` ({what})"),
+            )
+        })
+    }
+
+    /// An [`polbrdf::Error::InvalidParameter`] of `name` (a key), at its line.
+    fn invalid(&self, name: &'static str, value: f64, reason: &'static str) -> Error {
+        self.core_error(polbrdf::Error::InvalidParameter {
+            name,
+            value,
+            reason,
+        })
     }
 
     fn text(&self, key: &str) -> Option<&str> {
@@ -543,7 +667,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
             if !(l.is_finite() && l > 0.0) {
                 return Err(doc.error(
                     "wavelength_um",
-                    format!("{l}: a wavelength must be finite and > 0 (µm)"),
+                    format!("{}: a wavelength must be finite and > 0 (µm)", show(l)),
                 ));
             }
             Ok(Spectrum::Wavelength(l))
@@ -554,7 +678,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
                 if !(s.is_finite() && s > 0.0) {
                     return Err(doc.error(
                         "band.step_um",
-                        format!("{s}: a quadrature step must be finite and > 0 (µm)"),
+                        format!("{}: a quadrature step must be finite and > 0 (µm)", show(s)),
                     ));
                 }
             }
@@ -659,6 +783,87 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
     Ok((spec, name))
 }
 
+/// `[sun]`: `zenith_deg` and `irradiance` required, `azimuth_deg` 0 and `stokes` unpolarized by
+/// default; the angles in radians, the Stokes vector normalized to `s0 = 1`. `None` without a
+/// `[sun]`. The values are checked here, in the units of the file (the core checks them again,
+/// in radians).
+fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
+    if !doc.has("sun") {
+        return Ok(None);
+    }
+    let zenith_deg = doc.required_in_table("sun.zenith_deg")?;
+    let irradiance = doc.required_in_table("sun.irradiance")?;
+    let azimuth_deg = doc.number("sun.azimuth_deg").unwrap_or(0.0);
+    // −0 is 0; a zenith angle just below 90° can round to π/2 in radians.
+    let zenith = zenith_deg.to_radians() + 0.0;
+    if !(zenith_deg.is_finite() && (0.0..90.0).contains(&zenith_deg) && zenith < FRAC_PI_2) {
+        return Err(doc.invalid(
+            "sun.zenith_deg",
+            zenith_deg,
+            "the sun must be above the horizon: in [0, 90) degrees",
+        ));
+    }
+    if !azimuth_deg.is_finite() {
+        return Err(doc.invalid("sun.azimuth_deg", azimuth_deg, "must be finite"));
+    }
+    if !(irradiance.is_finite() && irradiance >= 0.0) {
+        return Err(doc.invalid("sun.irradiance", irradiance, "must be finite and >= 0"));
+    }
+    let stokes = match doc.numbers("sun.stokes") {
+        None => Stokes::unpolarized(),
+        Some(s) => sun_stokes(doc, &s)?,
+    };
+    Ok(Some(Sun {
+        zenith,
+        azimuth: azimuth_deg.to_radians(),
+        irradiance,
+        stokes,
+    }))
+}
+
+/// `sun.stokes`: four finite numbers, `s0 > 0`, a degree of polarization at most 1 (to 1e-9,
+/// as `--stokes`), normalized to `s0 = 1` (and a DoP within the tolerance above 1 to 1).
+fn sun_stokes(doc: &Doc<'_>, s: &[f64]) -> Result<Stokes> {
+    let key = "sun.stokes";
+    let shown = || {
+        let v: Vec<String> = s.iter().map(|x| show(*x)).collect();
+        format!("[{}]", v.join(", "))
+    };
+    let [s0, s1, s2, s3] = *s else {
+        return Err(doc.error(
+            key,
+            format!(
+                "expected 4 numbers [s0, s1, s2, s3], got {} ({})",
+                s.len(),
+                shown()
+            ),
+        ));
+    };
+    if s.iter().any(|v| !v.is_finite()) {
+        return Err(doc.error(
+            key,
+            format!("{}: every Stokes parameter must be finite", shown()),
+        ));
+    }
+    if s0 <= 0.0 {
+        return Err(doc.error(key, format!("{}: s0 (the intensity) must be > 0", shown())));
+    }
+    let p = [s1 / s0, s2 / s0, s3 / s0];
+    let dop = p[0].hypot(p[1]).hypot(p[2]);
+    if dop.is_nan() || dop > 1.0 + 1e-9 {
+        return Err(doc.error(
+            key,
+            format!(
+                "{}: the degree of polarization sqrt(s1² + s2² + s3²)/s0 = {} exceeds 1",
+                shown(),
+                show(dop)
+            ),
+        ));
+    }
+    let f = if dop > 1.0 { 1.0 / dop } else { 1.0 };
+    Ok(Stokes([1.0, p[0] * f, p[1] * f, p[2] * f]))
+}
+
 /// `[sky]`: the model of `SKY_MODELS` (default `none`) with its keys only.
 fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
     let name = doc.text("sky.model").unwrap_or(SKY_MODELS[0].name);
@@ -727,6 +932,27 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
             doc.read_file("sky.file", read_sky_profile_csv)?
                 .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
         ),
+        SkyKind::ClearSky => {
+            let irradiance = doc.required_number(name, "sky.irradiance")?;
+            if !doc.has("sun") {
+                return Err(doc.error(
+                    "sky.model",
+                    format!(
+                        "sky model \"{name}\" requires a [sun] table (zenith_deg, azimuth_deg, \
+                         irradiance): the clear sky's radiance and polarization are set by the \
+                         sun's position"
+                    ),
+                ));
+            }
+            SkyModel::ClearSky {
+                irradiance,
+                dop_max: doc.number("sky.dop_max").unwrap_or(DEFAULT_DOP_MAX),
+            }
+        }
+        SkyKind::Table => SkyModel::Table(
+            doc.read_file("sky.file", read_sky_table_csv)?
+                .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
+        ),
     })
 }
 
@@ -744,22 +970,25 @@ fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
 }
 
 /// Parses a scene file's text; `path` names it in error messages, and its folder is where
-/// relative file names (band, sky profile, materials) are found.
+/// relative file names (band, sky profile or table, materials) are found.
 ///
 /// # Errors
 /// [`Error::Syntax`] for malformed TOML (including duplicate keys and tables, and dotted
 /// keys); [`Error::Field`] naming the line and the key (`table.key`) for an unknown key or
 /// table, a wrong type, an invalid value, a key of another sky model, a missing required key
-/// or a file that cannot be read or parsed (the message then holds that file's own error);
+/// (also a `[sun]` the `cie-clear` sky needs, at `sky.model`) or a file that cannot be read or
+/// parsed (the message then holds that file's own error);
 /// [`Error::File`] when neither `wavelength_um` nor `[band]` is given.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let doc = Doc::parse(text, path)?;
     let spectrum = spectrum(&doc)?;
+    let sun = sun(&doc)?;
     let thermal = ThermalScene {
         surface_temperature_k: surface(&doc),
         sky: sky(&doc)?,
         atmosphere: atmosphere(&doc),
+        sun,
     };
     thermal.validate().map_err(|e| doc.core_error(e))?;
     Ok(Scene {

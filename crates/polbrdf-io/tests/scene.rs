@@ -1,14 +1,19 @@
-//! Scene files: each sky model read into the expected structs, files found relative to the
-//! scene file, and a table of bad inputs whose messages name file, line and key.
+//! Scene files: each sky model and the sun read into the expected structs, sky tables in any
+//! row order, files found relative to the scene file, and a table of bad inputs whose messages
+//! name file, line and key.
 
-use polbrdf::analysis::sky::ZenithProfile;
+use polbrdf::analysis::scene::Sun;
+use polbrdf::analysis::sky::{SkyRadiance, TableSky, ZenithProfile};
 use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
-use polbrdf::{Band, Spectrum};
-use polbrdf_io::{parse_scene, read_scene, Error, Scene, SceneObject};
+use polbrdf::{Band, Spectrum, Stokes};
+use polbrdf_io::{parse_scene, parse_sky_table_csv, read_scene, Error, Scene, SceneObject};
 use std::path::{Path, PathBuf};
 
 const BAND: &str = "wavelength_um,response\n8,0\n9,1\n11,1\n12,0\n";
 const SKY: &str = "zenith_deg,radiance\n0,1.0\n45,1.5\n90,3.0\n";
+/// A sky table on the grid [0, 45, 90] × [0, 180], θ-major; s0 = 1 + θ/90 + φ/360.
+const SKY_TABLE: &str = "theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,180,1.5,0,0,0\n\
+                         45,0,1.5,0.5,0,0\n45,180,2,0,0.5,0\n90,0,2,0,0,0.5\n90,180,2.5,-1,1,0\n";
 
 fn parse(text: &str) -> Result<Scene, Error> {
     parse_scene(text, Path::new("scene.toml"))
@@ -31,6 +36,7 @@ fn no_sky(surface: Option<f64>) -> ThermalScene {
         surface_temperature_k: surface,
         sky: SkyModel::None,
         atmosphere: Atmosphere::default(),
+        sun: None,
     }
 }
 
@@ -63,6 +69,7 @@ fn uniform_sky_and_atmosphere() {
                 transmittance: 0.9,
                 path_radiance: 0.2,
             },
+            sun: None,
         }
     );
     // An inline table, a zero radiance, a BOM and CRLF line ends.
@@ -88,6 +95,145 @@ fn thermal_sky() {
         }
     );
     assert_eq!(s.thermal.atmosphere, Atmosphere::default());
+}
+
+#[test]
+fn sun_with_every_key() {
+    let s = parse(
+        "wavelength_um = 0.55\n[sun]\nzenith_deg = 40\nazimuth_deg = -30\nirradiance = 1000\n\
+         stokes = [2, 1, 0, -0.5]\n",
+    )
+    .unwrap();
+    assert_eq!(
+        s.thermal,
+        ThermalScene {
+            sun: Some(Sun {
+                zenith: 40f64.to_radians(),
+                azimuth: (-30f64).to_radians(),
+                irradiance: 1000.0,
+                stokes: Stokes([1.0, 0.5, 0.0, -0.25]),
+            }),
+            ..no_sky(None)
+        },
+        "degrees in radians, the Stokes vector normalized to s0 = 1"
+    );
+    s.thermal.validate().unwrap();
+    // A fully polarized sun, integers, an inline table.
+    let s = parse(
+        "wavelength_um = 0.55\nsun = { zenith_deg = 0, irradiance = 1, stokes = [4, 0, 0, 4] }\n",
+    )
+    .unwrap();
+    let sun = s.thermal.sun.unwrap();
+    assert_eq!(sun.stokes, Stokes([1.0, 0.0, 0.0, 1.0]));
+    assert_eq!((sun.zenith, sun.azimuth), (0.0, 0.0));
+    // A DoP above 1 by less than `--stokes` tolerates (1e-9) is brought to 1.
+    let s = parse(
+        "wavelength_um = 0.55\n[sun]\nzenith_deg = 10\nirradiance = 1\n\
+         stokes = [1, 1.0000000001, 0, 0]\n",
+    )
+    .unwrap();
+    assert_eq!(s.thermal.sun.unwrap().stokes, Stokes([1.0, 1.0, 0.0, 0.0]));
+    s.thermal.validate().unwrap();
+}
+
+#[test]
+fn sun_defaults() {
+    // Without azimuth and Stokes vector: azimuth 0, unpolarized; 0 irradiance is a sun too;
+    // a zenith angle just below 90° is above the horizon.
+    let s = parse("wavelength_um = 0.55\n[sun]\nzenith_deg = 89.9\nirradiance = 0\n").unwrap();
+    assert_eq!(
+        s.thermal.sun,
+        Some(Sun::unpolarized(89.9f64.to_radians(), 0.0, 0.0))
+    );
+    assert!(
+        !s.thermal.is_azimuth_independent(),
+        "a sun breaks the symmetry"
+    );
+    // No [sun]: no sun.
+    let s = parse("wavelength_um = 0.55\n").unwrap();
+    assert_eq!(s.thermal.sun, None);
+    assert!(s.thermal.is_azimuth_independent());
+}
+
+#[test]
+fn clear_sky() {
+    let s = parse(
+        "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = 90\nirradiance = 900\n\
+         [sky]\nmodel = \"cie-clear\"\nirradiance = 80\n",
+    )
+    .unwrap();
+    assert_eq!(
+        s.thermal.sky,
+        SkyModel::ClearSky {
+            irradiance: 80.0,
+            dop_max: 0.75
+        },
+        "dop_max defaults to 0.75"
+    );
+    assert_eq!(
+        s.thermal.sun,
+        Some(Sun::unpolarized(
+            30f64.to_radians(),
+            90f64.to_radians(),
+            900.0
+        ))
+    );
+    s.thermal.validate().unwrap();
+    // The sky before the sun in the file, dop_max given, a zero irradiance, a sun of zero
+    // irradiance (the sky takes its position only).
+    let s = parse(
+        "wavelength_um = 0.55\n[sky]\nmodel = \"cie-clear\"\ndop_max = 0.5\nirradiance = 0\n\
+         [sun]\nzenith_deg = 60\nirradiance = 0\n",
+    )
+    .unwrap();
+    assert_eq!(
+        s.thermal.sky,
+        SkyModel::ClearSky {
+            irradiance: 0.0,
+            dop_max: 0.5
+        }
+    );
+}
+
+#[test]
+fn table_sky_rows_in_any_order() {
+    let grid = TableSky::new(
+        vec![0.0, 45.0, 90.0],
+        vec![0.0, 180.0],
+        vec![
+            Stokes([1.0, 0.0, 0.0, 0.0]),
+            Stokes([1.5, 0.0, 0.0, 0.0]),
+            Stokes([1.5, 0.5, 0.0, 0.0]),
+            Stokes([2.0, 0.0, 0.5, 0.0]),
+            Stokes([2.0, 0.0, 0.0, 0.5]),
+            Stokes([2.5, -1.0, 1.0, 0.0]),
+        ],
+    )
+    .unwrap();
+    let (_d, p) = folder(
+        &[("sky.csv", SKY_TABLE.as_bytes())],
+        "scene.toml",
+        b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+    );
+    let s = read_scene(&p).unwrap();
+    assert_eq!(s.thermal.sky, SkyModel::Table(grid.clone()));
+    assert!(!s.thermal.is_azimuth_independent());
+    assert_eq!(s.thermal.sun, None, "a table sky needs no sun");
+    // The same nodes shuffled, the columns reordered with an extra one, −0, a BOM and CRLF.
+    let shuffled = "\u{feff}s3,label,s1,phi_deg,s0,theta_deg,s2\r\n0,a,-1,180,2.5,90,1\r\n\
+                    0,b,0,-0,1,0,0\r\n0,c,0.5,0,1.5,45,0\r\n0.5,d,0,0,2,90,0\r\n\
+                    0,e,0,180,1.5,-0,0\r\n0,f,0,180,2,45,0.5\r\n";
+    let t = parse_sky_table_csv(shuffled.as_bytes(), Path::new("t.csv")).unwrap();
+    assert_eq!(t, grid);
+    // One azimuth: an azimuth-independent table.
+    let t = parse_sky_table_csv(
+        b"theta_deg,phi_deg,s0,s1,s2,s3\n90,10,3,0,0,0\n0,10,1,0,0,0\n",
+        Path::new("t.csv"),
+    )
+    .unwrap();
+    assert_eq!(t.grid(), (&[0.0, 90.0][..], &[10.0][..]));
+    let l = t.stokes(45f64.to_radians(), 4.0);
+    assert!((l.0[0] - 2.0).abs() < 1e-12, "{l:?}");
 }
 
 #[test]
@@ -124,6 +270,7 @@ fn profile_sky_band_and_materials() {
             surface_temperature_k: Some(300.0),
             sky: SkyModel::Profile(profile),
             atmosphere: Atmosphere::default(),
+            sun: None,
         }
     );
     s.thermal.validate().unwrap();
@@ -258,10 +405,14 @@ fn cases() -> Vec<Case> {
         ),
         case(
             "unknown table",
-            b"wavelength_um = 10\n\n[sun]\nzenith_deg = 30\n",
+            b"wavelength_um = 10\n\n[moon]\nzenith_deg = 30\n",
             Some(3),
-            Some("sun"),
-            &["unknown table [sun]", "known tables: [band], [surface]"],
+            Some("moon"),
+            &[
+                "unknown table [moon]",
+                "known tables: [band], [surface]",
+                "[sun], [sky]",
+            ],
         ),
         with_files(
             GOOD_BAND,
@@ -550,7 +701,7 @@ fn cases() -> Vec<Case> {
             b"wavelength_um = 10\n[sky]\nmodel = \"uniform\"\nradiance = -1\n",
             Some(4),
             Some("sky.radiance"),
-            &["invalid parameter `sky.radiance` = -1: must be finite and >= 0"],
+            &["invalid parameter `sky.radiance` = -1: must be finite, >= 0 and at most 1e150"],
         ),
         case(
             "sky temperature 0",
@@ -607,7 +758,7 @@ fn cases() -> Vec<Case> {
             b"wavelength_um = 10\n[atmosphere]\npath_radiance = -0.2\n",
             Some(3),
             Some("atmosphere.path_radiance"),
-            &["`atmosphere.path_radiance` = -0.2: must be finite and >= 0"],
+            &["`atmosphere.path_radiance` = -0.2: must be finite, >= 0 and at most 1e150"],
         ),
         // Sky profile files.
         with_files(
@@ -664,6 +815,289 @@ fn cases() -> Vec<Case> {
             Some(4),
             Some("sky.file"),
             &["{d}/sky.csv: cannot read"],
+        ),
+        // The sun.
+        case(
+            "unknown key in [sun]",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\nelevation_deg = 60\n",
+            Some(5),
+            Some("sun.elevation_deg"),
+            &[
+                "unknown key in [sun]",
+                "zenith_deg, azimuth_deg, irradiance, stokes",
+            ],
+        ),
+        case(
+            "sun on the horizon",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 90\nirradiance = 1000\n",
+            Some(3),
+            Some("sun.zenith_deg"),
+            &["invalid parameter `sun.zenith_deg` = 90: the sun must be above the horizon: in [0, 90) degrees"],
+        ),
+        case(
+            "sun below the horizon",
+            b"wavelength_um = 0.55\n[sun]\nirradiance = 1000\nzenith_deg = 95\n",
+            Some(4),
+            Some("sun.zenith_deg"),
+            &["`sun.zenith_deg` = 95: the sun must be above the horizon"],
+        ),
+        case(
+            "sun below the horizon with a clear sky",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"cie-clear\"\nirradiance = 50\n[sun]\n\
+              zenith_deg = 95\nirradiance = 1000\n",
+            Some(6),
+            Some("sun.zenith_deg"),
+            &["`sun.zenith_deg` = 95: the sun must be above the horizon: in [0, 90) degrees"],
+        ),
+        case(
+            "negative sun zenith",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = -5\nirradiance = 1000\n",
+            Some(3),
+            Some("sun.zenith_deg"),
+            &["`sun.zenith_deg` = -5"],
+        ),
+        case(
+            "NaN sun zenith",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = nan\nirradiance = 1000\n",
+            Some(3),
+            Some("sun.zenith_deg"),
+            &["`sun.zenith_deg` = NaN"],
+        ),
+        case(
+            "infinite sun azimuth",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = -inf\nirradiance = 1\n",
+            Some(4),
+            Some("sun.azimuth_deg"),
+            &["`sun.azimuth_deg` = -inf: must be finite"],
+        ),
+        case(
+            "[sun] without zenith",
+            b"wavelength_um = 0.55\n\n[sun]\nirradiance = 1000\n",
+            Some(3),
+            Some("sun"),
+            &["missing required key `zenith_deg`", "in [0, 90)"],
+        ),
+        case(
+            "[sun] without irradiance",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\n",
+            Some(2),
+            Some("sun"),
+            &["missing required key `irradiance`", "normal to its beam, W·m⁻²·µm⁻¹"],
+        ),
+        case(
+            "negative sun irradiance",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = -1000\n",
+            Some(4),
+            Some("sun.irradiance"),
+            &["invalid parameter `sun.irradiance` = -1000: must be finite and >= 0"],
+        ),
+        case(
+            "sun irradiance as a string",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = \"bright\"\n",
+            Some(4),
+            Some("sun.irradiance"),
+            &["expected a number", "got string"],
+        ),
+        case(
+            "sun Stokes vector of 3 numbers",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, 0, 0]\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["expected 4 numbers [s0, s1, s2, s3], got 3 ([1, 0, 0])"],
+        ),
+        case(
+            "sun Stokes vector of DoP above 1",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, 0.8, 0.8, 0]\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["[1, 0.8, 0.8, 0]: the degree of polarization", "exceeds 1"],
+        ),
+        case(
+            "sun Stokes vector of s0 0",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [0, 0, 0, 0]\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["s0 (the intensity) must be > 0"],
+        ),
+        case(
+            "sun Stokes vector with a NaN",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, nan, 0, 0]\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["[1, NaN, 0, 0]: every Stokes parameter must be finite"],
+        ),
+        case(
+            "sun Stokes vector holding a string",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, \"0\", 0, 0]\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["expected an array of numbers", "got an array holding a string"],
+        ),
+        case(
+            "sun Stokes vector as a number",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = 1\n",
+            Some(5),
+            Some("sun.stokes"),
+            &["expected an array of numbers (the sun's Stokes vector [s0, s1, s2, s3]), got integer"],
+        ),
+        // The clear sky.
+        case(
+            "cie-clear without a sun",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"cie-clear\"\nirradiance = 50\n",
+            Some(3),
+            Some("sky.model"),
+            &["sky model \"cie-clear\" requires a [sun] table", "sun's position"],
+        ),
+        case(
+            "cie-clear without irradiance",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\n[sky]\nmodel = \"cie-clear\"\n",
+            Some(6),
+            Some("sky.model"),
+            &["sky model \"cie-clear\" requires the key `irradiance`", "horizontal"],
+        ),
+        case(
+            "cie-clear negative irradiance",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\n[sky]\nmodel = \"cie-clear\"\nirradiance = -50\n",
+            Some(7),
+            Some("sky.irradiance"),
+            &["invalid parameter `sky.irradiance` = -50: must be finite, >= 0 and at most 1e150"],
+        ),
+        case(
+            "cie-clear dop_max 1.5",
+            b"wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\n[sky]\nmodel = \"cie-clear\"\nirradiance = 50\ndop_max = 1.5\n",
+            Some(8),
+            Some("sky.dop_max"),
+            &["invalid parameter `sky.dop_max` = 1.5: must lie in [0, 1]"],
+        ),
+        case(
+            "dop_max with the uniform model",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"uniform\"\nradiance = 1\ndop_max = 0.5\n",
+            Some(5),
+            Some("sky.dop_max"),
+            &["`dop_max` is not a key of sky model \"uniform\"", "belongs to model = \"cie-clear\""],
+        ),
+        // Sky tables.
+        case(
+            "table without file",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\n",
+            Some(3),
+            Some("sky.model"),
+            &["sky model \"table\" requires the key `file`", "theta_deg,phi_deg,s0,s1,s2,s3"],
+        ),
+        case(
+            "table file missing",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv: cannot read"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,180,1,0,0,0\n45,0,1,0,0,0\n90,0,1,0,0,0\n90,180,1,0,0,0\n")],
+            "table with a hole",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &[
+                "{d}/sky.csv: the sky table has a hole: no row for the node (theta_deg = 45, phi_deg = 180)",
+                "zenith angles [0, 45, 90] × azimuths [0, 180] has 6 nodes",
+                "1 of them is missing (5 rows given)",
+            ],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n0,0.0,2,0,0,0\n")],
+            "table with a node given twice",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:4: field `theta_deg,phi_deg`: the node (theta_deg = 0, phi_deg = 0) is given twice: at lines 2 and 4"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,90,1,0,0,0\n80,0,1,0,0,0\n80,90,1,0,0,0\n")],
+            "table not reaching zenith 90",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv: a sky table must cover the whole sky: zenith angles from 0° to 90°"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n0,90,1,0,0,0\n90,90,-0.5,0,0,0\n")],
+            "table with s0 below 0",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:5: field `s0`: invalid parameter `s0` = -0.5 (at the node theta_deg = 90, phi_deg = 90): must be >= 0"],
+        ),
+        with_files(
+            &[("sky.csv", b"phi_deg,theta_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,90,1,0.6,0.8,0.1\n")],
+            "table with a DoP above 1",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:3: field `s0`", "degree of polarization", "exceeds 1"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,-1e300,0,0,0\n")],
+            "table with a huge negative s0 (shown in exponent form)",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:3: field `s0`: invalid parameter `s0` = -1e300 (at the node theta_deg = 90, phi_deg = 0)"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n90,1e-300,1,0,0,0\n")],
+            "table with a hole at a tiny azimuth (shown in exponent form)",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["no row for the node (theta_deg = 0, phi_deg = 1e-300)", "azimuths [0, 1e-300]"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n0,360,1,0,0,0\n90,360,1,0,0,0\n")],
+            "table with azimuth 360",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:4: field `phi_deg`: 360: an azimuth must lie in [0°, 360°)", "give 360° as 0°"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n91,0,1,0,0,0\n")],
+            "table with zenith 91",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:3: field `theta_deg`: 91: a zenith angle must lie in [0°, 90°]"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2\n0,0,1,0,0\n90,0,1,0,0\n")],
+            "table without s3",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv: missing column(s) s3"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n")],
+            "table without rows",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv: no rows"],
+        ),
+        with_files(
+            &[("sky.csv", b"theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,bright,0,0,0\n")],
+            "table with a word for a number",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv:3: field `s0`: expected a number, got \"bright\""],
+        ),
+        with_files(
+            &[("sky.csv", b"zenith_deg,radiance\n0,1\n90,2\n")],
+            "a profile file for a table",
+            b"wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n",
+            Some(4),
+            Some("sky.file"),
+            &["{d}/sky.csv: missing column(s) theta_deg, phi_deg, s0, s1, s2, s3"],
         ),
         // Materials.
         case(

@@ -157,6 +157,24 @@ pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
     }
 }
 
+/// Largest accepted radiance or irradiance of a source (sun, sky, path radiance), in any
+/// unit: far beyond any physical value, and small enough that sums of products of it with a
+/// BRDF, weights and Planck radiances stay finite.
+pub const MAX_RADIOMETRIC: f64 = 1e150;
+
+/// `value` if finite, ≥ 0 and at most [`MAX_RADIOMETRIC`] (a radiance or an irradiance).
+pub(crate) fn radiometric(name: &'static str, value: f64) -> Result<f64> {
+    if value.is_finite() && (0.0..=MAX_RADIOMETRIC).contains(&value) {
+        Ok(value + 0.0)
+    } else {
+        Err(Error::InvalidParameter {
+            name,
+            value,
+            reason: "must be finite, >= 0 and at most 1e150",
+        })
+    }
+}
+
 /// Largest accepted `n` and `k`. Beyond radio-frequency metals (|N| ~ 10⁴); larger values would
 /// overflow the complex Fresnel arithmetic (|N²|² must stay finite).
 pub const MAX_INDEX: f64 = 1e6;

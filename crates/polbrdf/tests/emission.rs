@@ -202,6 +202,7 @@ fn thermal_scene(t_surface: f64, t_sky: f64) -> ThermalScene {
             temperature_k: t_sky,
         },
         atmosphere: Atmosphere::default(),
+        sun: None,
     }
 }
 
@@ -299,6 +300,7 @@ fn a_profile_sky_brighter_at_the_horizon_reflects_more_at_grazing_view() {
             transmittance: 0.5,
             path_radiance: 0.25,
         },
+        sun: None,
     };
     let views = [(0.0, 0.0), (80f64.to_radians(), 0.0)];
     let r = observed_radiance(&s, &scene, &Spectrum::Wavelength(10.0), &views).unwrap();
@@ -375,6 +377,7 @@ fn an_observed_profile_sky_is_the_direct_sky_integral_at_every_azimuth() {
         surface_temperature_k: Some(290.0),
         sky: SkyModel::Profile(profile.clone()),
         atmosphere: Atmosphere::default(),
+        sun: None,
     };
     let observer =
         polbrdf::analysis::scene::Observer::new(&s, &scene, &Spectrum::Wavelength(10.0)).unwrap();

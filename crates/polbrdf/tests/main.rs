@@ -4,6 +4,7 @@ mod albedo;
 mod bounds;
 mod common;
 mod contrast;
+mod daylight;
 mod emission;
 mod golden;
 mod kernel;

@@ -69,6 +69,12 @@ pub struct FacetRule {
     pub theta_points: usize,
     /// Gauss–Legendre points per φN panel (14 by default).
     pub phi_points: usize,
+    /// A direction `w'` (unit vector, in the frame where the fixed direction is at azimuth 0)
+    /// where the integrand has a cone point — the sun of a clear sky, whose circumsolar term
+    /// `exp(d·γ)` is not differentiable there: its facet normal `h = unit(w + w')` becomes a
+    /// panel corner (a θN edge and, on every ring, a φN edge), where the smoothstep map
+    /// clusters the nodes.
+    pub cone: Option<[f64; 3]>,
 }
 
 impl FacetRule {
@@ -83,6 +89,15 @@ impl FacetRule {
             azimuth_kink: material.params().uses_phi_n(),
             theta_points: 14,
             phi_points: 14,
+            cone: None,
+        }
+    }
+
+    /// The same rule with a cone point of the integrand at `w'` ([`FacetRule::cone`]).
+    pub fn with_cone(self, w: [f64; 3]) -> Self {
+        Self {
+            cone: Some(w),
+            ..self
         }
     }
 
@@ -100,7 +115,7 @@ impl FacetRule {
     }
 
     /// The θN panel edges for a fixed direction at zenith `theta` (module documentation).
-    fn theta_edges(&self, theta: f64) -> Vec<f64> {
+    fn theta_edges(&self, theta: f64, cone: Option<(f64, f64)>) -> Vec<f64> {
         let s = self.sigma;
         let mut e = vec![
             0.0,
@@ -125,6 +140,9 @@ impl FacetRule {
                 e.push(c.acos());
             }
         }
+        if let Some((theta_n, _)) = cone {
+            e.push(theta_n);
+        }
         // Beyond 8σ, D < a·e⁻⁶⁴: nothing left to integrate.
         let top = (8.0 * s).min(FRAC_PI_2);
         e.push(top);
@@ -143,7 +161,13 @@ impl FacetRule {
         let panels = self.refine.max(1);
         let (st, ct) = theta.sin_cos();
         let w = [st, 0.0, ct];
-        let edges = self.theta_edges(theta);
+        // The cone point's facet normal (θN, |φN|).
+        let cone = self.cone.and_then(|c| {
+            let h = [w[0] + c[0], w[1] + c[1], w[2] + c[2]];
+            let n = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
+            (n > 1e-12).then(|| ((h[2] / n).clamp(-1.0, 1.0).acos(), h[1].atan2(h[0]).abs()))
+        });
+        let edges = self.theta_edges(theta, cone);
         // φmax on the ring at θN: w'·z = 2cosβ·cosθN − cosθ > 0 with
         // cosβ = sinθ·sinθN·cosφN + cosθ·cosθN.
         let phi_max = |sn: f64, cn: f64| -> f64 {
@@ -185,6 +209,11 @@ impl FacetRule {
                         if p > 1e-12 && p < pm - 1e-12 {
                             arc.push(p);
                         }
+                    }
+                }
+                if let Some((_, p)) = cone {
+                    if p > 1e-12 && p < pm - 1e-12 {
+                        arc.push(p);
                     }
                 }
                 arc.push(pm);
@@ -285,6 +314,7 @@ mod tests {
             azimuth_kink: full_ring,
             theta_points: 20,
             phi_points: 20,
+            cone: None,
         }
     }
 

@@ -16,14 +16,17 @@
 //! taken as constant across a band.
 
 use crate::analysis::emission::emissivity_vectors;
-use crate::analysis::sky::{sky_reflection, ProfileSky, ZenithProfile};
+use crate::analysis::sky::{
+    sky_reflection, sky_reflection_prepared, sky_reflections_at_zenith, volume_rings, ClearSky,
+    ProfileSky, Quality, SkyRadiance, TableSky, ZenithProfile,
+};
 use crate::analysis::spectral::Spectrum;
 use crate::analysis::thermal::{planck, temperature};
 use crate::error::{Error, Result};
 use crate::model::{Material, MaterialSpec};
 use crate::optics::stokes::Stokes;
 use std::collections::HashMap;
-use std::f64::consts::FRAC_PI_2;
+use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::{Arc, Mutex};
 
 /// The sky of a thermal scene.
@@ -46,6 +49,17 @@ pub enum SkyModel {
     /// An unpolarized sky whose spectral radiance depends on the zenith angle, tabulated
     /// (`model = "profile"`), the same at every wavelength.
     Profile(ZenithProfile),
+    /// The CIE standard clear sky with Rayleigh polarization (`model = "cie-clear"`,
+    /// [`ClearSky`]) for the scene's sun, scaled to a horizontal (spectral) irradiance, the same
+    /// at every wavelength. Needs a [`Sun`] for its position.
+    ClearSky {
+        /// The sky's horizontal irradiance `∫_H L cosθ dω` (W·m⁻²·µm⁻¹).
+        irradiance: f64,
+        /// The maximum degree of polarization δ_max (90° from the sun), in [0, 1].
+        dop_max: f64,
+    },
+    /// A tabulated Stokes sky (`model = "table"`, [`TableSky`]), the same at every wavelength.
+    Table(TableSky),
 }
 
 impl SkyModel {
@@ -55,8 +69,13 @@ impl SkyModel {
             SkyModel::None => Some(0.0),
             SkyModel::Uniform { radiance } => Some(*radiance),
             SkyModel::Thermal { temperature_k } => Some(planck(lambda_um, *temperature_k)),
-            SkyModel::Profile(_) => None,
+            SkyModel::Profile(_) | SkyModel::ClearSky { .. } | SkyModel::Table(_) => None,
         }
+    }
+
+    /// Whether the sky is the same at every azimuth.
+    pub fn is_azimuth_independent(&self) -> bool {
+        !matches!(self, SkyModel::ClearSky { .. } | SkyModel::Table(_))
     }
 }
 
@@ -78,8 +97,36 @@ impl Default for Atmosphere {
     }
 }
 
-/// A thermal scene: the surface's temperature (no emission without one), the sky and the
-/// atmosphere.
+/// The sun: a collimated source from `(zenith, azimuth)` of irradiance `irradiance` on a
+/// plane normal to its beam (W·m⁻²·µm⁻¹, the same at every wavelength) and Stokes vector
+/// `stokes` (in the arriving beam's psps basis, normalized to `s0 = 1`). Its contribution to
+/// the observed radiance is `E·cosθs·F(w_s, w_r)·s` (docs/model.md §18).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sun {
+    /// Zenith angle (rad), in `[0, π/2)`.
+    pub zenith: f64,
+    /// Azimuth (rad).
+    pub azimuth: f64,
+    /// Irradiance normal to the beam (≥ 0).
+    pub irradiance: f64,
+    /// Stokes vector, `s0 = 1` (unpolarized: `(1, 0, 0, 0)`).
+    pub stokes: Stokes,
+}
+
+impl Sun {
+    /// An unpolarized sun.
+    pub fn unpolarized(zenith: f64, azimuth: f64, irradiance: f64) -> Self {
+        Self {
+            zenith,
+            azimuth,
+            irradiance,
+            stokes: Stokes::unpolarized(),
+        }
+    }
+}
+
+/// A scene: the surface's temperature (no emission without one), the sun (none by default),
+/// the sky and the atmosphere.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThermalScene {
     /// The surface temperature (K); `None`: no thermal emission.
@@ -88,26 +135,77 @@ pub struct ThermalScene {
     pub sky: SkyModel,
     /// The atmosphere.
     pub atmosphere: Atmosphere,
+    /// The sun; `None`: no collimated source.
+    pub sun: Option<Sun>,
 }
+
+/// Another name for [`ThermalScene`], which holds daylight scenes as well.
+pub type Scene = ThermalScene;
 
 impl ThermalScene {
     /// Checks every value.
     ///
     /// # Errors
-    /// [`Error::InvalidParameter`] naming `surface.temperature_k`, `sky.radiance`,
-    /// `sky.temperature_k`, `atmosphere.transmittance` or `atmosphere.path_radiance`.
+    /// [`Error::InvalidParameter`] naming `surface.temperature_k`, `sun.zenith_deg` (the sun
+    /// must be above the horizon), `sun.azimuth_deg`, `sun.irradiance`, `sun.stokes`,
+    /// `sky.radiance`, `sky.temperature_k`, `sky.irradiance`, `sky.dop_max`,
+    /// `atmosphere.transmittance` or `atmosphere.path_radiance` (radiances and irradiances
+    /// finite, ≥ 0 and at most 1e150); [`Error::InconsistentParameters`] for a cie-clear sky
+    /// without a sun.
     pub fn validate(&self) -> Result<()> {
         if let Some(t) = self.surface_temperature_k {
             temperature("surface.temperature_k", t)?;
         }
+        if let Some(sun) = &self.sun {
+            if !(sun.zenith.is_finite() && (0.0..FRAC_PI_2).contains(&sun.zenith)) {
+                return Err(Error::InvalidParameter {
+                    name: "sun.zenith_deg",
+                    value: sun.zenith.to_degrees(),
+                    reason: "the sun must be above the horizon: in [0, 90) degrees",
+                });
+            }
+            if !sun.azimuth.is_finite() {
+                return Err(Error::InvalidParameter {
+                    name: "sun.azimuth_deg",
+                    value: sun.azimuth.to_degrees(),
+                    reason: "must be finite",
+                });
+            }
+            crate::error::radiometric("sun.irradiance", sun.irradiance)?;
+            let st = sun.stokes.0;
+            if st.iter().any(|v| !v.is_finite())
+                || (st[0] - 1.0).abs() > 1e-12
+                || st[1].hypot(st[2]).hypot(st[3]) > 1.0 + 1e-9
+            {
+                return Err(Error::InvalidParameter {
+                    name: "sun.stokes",
+                    value: st[0],
+                    reason: "must be finite, normalized to s0 = 1 and of degree of \
+                             polarization at most 1",
+                });
+            }
+        }
         match &self.sky {
             SkyModel::Uniform { radiance } => {
-                crate::error::non_negative("sky.radiance", *radiance)?;
+                crate::error::radiometric("sky.radiance", *radiance)?;
             }
             SkyModel::Thermal { temperature_k } => {
                 temperature("sky.temperature_k", *temperature_k)?;
             }
-            SkyModel::None | SkyModel::Profile(_) => {}
+            SkyModel::ClearSky {
+                irradiance,
+                dop_max,
+            } => {
+                let Some(sun) = &self.sun else {
+                    return Err(Error::InconsistentParameters(
+                        "the cie-clear sky needs a sun ([sun] zenith_deg, azimuth_deg): its \
+                         radiance and polarization are set by the sun's position"
+                            .into(),
+                    ));
+                };
+                ClearSky::new(sun.zenith, sun.azimuth, *irradiance, *dop_max)?;
+            }
+            SkyModel::None | SkyModel::Profile(_) | SkyModel::Table(_) => {}
         }
         let t = self.atmosphere.transmittance;
         if !(t.is_finite() && (0.0..=1.0).contains(&t)) {
@@ -117,8 +215,14 @@ impl ThermalScene {
                 reason: "must lie in [0, 1]",
             });
         }
-        crate::error::non_negative("atmosphere.path_radiance", self.atmosphere.path_radiance)?;
+        crate::error::radiometric("atmosphere.path_radiance", self.atmosphere.path_radiance)?;
         Ok(())
+    }
+
+    /// Whether what a surface observes here is the same at every view azimuth: no sun and an
+    /// azimuth-independent sky (the model is isotropic).
+    pub fn is_azimuth_independent(&self) -> bool {
+        self.sun.is_none() && self.sky.is_azimuth_independent()
     }
 
     /// The same scene with another surface temperature.
@@ -148,11 +252,13 @@ pub struct Radiance {
 /// A surface prepared for observation in a scene: its materials at the spectral nodes, the
 /// scene validated — [`Observer::observe`] cannot fail.
 ///
-/// The model is isotropic and every sky here is azimuth-independent, so what the surface
-/// emits and reflects toward `(θr, φr)` depends on θr alone (its Stokes vector is in the basis
-/// of the view's own plane): it is computed once per distinct view zenith and kept — a second
-/// `observe` at the same zeniths (the refinement of a contrast's best directions, the other
-/// azimuths of a map) costs no quadrature. Clones share that cache.
+/// The model is isotropic, so what the surface emits — and reflects of an azimuth-independent
+/// sky — toward `(θr, φr)` depends on θr alone (its Stokes vector is in the basis of the view's
+/// own plane): it is computed once per distinct view zenith and kept — a second `observe` at the
+/// same zeniths (the refinement of a contrast's best directions, the other azimuths of a map)
+/// costs no quadrature. Clones share that cache. The sun and an azimuth-dependent sky
+/// (cie-clear, table) are computed per distinct view, folded by the scene's mirror symmetry
+/// where it has one.
 #[derive(Debug, Clone)]
 pub struct Observer {
     scene: ThermalScene,
@@ -161,7 +267,18 @@ pub struct Observer {
     /// Per view zenith (its bits): per spectral node, ε by route A and the profile sky's
     /// reflection (zero for other skies).
     cache: Arc<Mutex<HashMap<u64, Arc<[ZenithTerms]>>>>,
+    /// A sky that depends on azimuth (cie-clear, table), with its volume rings.
+    polarized_sky: Option<PreparedSky>,
 }
+
+impl std::fmt::Debug for dyn SkyRadiance + Send {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SkyRadiance")
+    }
+}
+
+/// An azimuth-dependent sky with its volume rings ([`volume_rings`]).
+type PreparedSky = (Arc<dyn SkyRadiance + Send>, Arc<[(f64, f64)]>);
 
 /// What a surface emits and reflects toward one view zenith at one spectral node.
 #[derive(Debug, Clone, Copy)]
@@ -193,6 +310,22 @@ impl Observer {
                 ));
             }
         }
+        let polarized_sky: Option<Arc<dyn SkyRadiance + Send>> = match &scene.sky {
+            SkyModel::ClearSky {
+                irradiance,
+                dop_max,
+            } => {
+                let sun = scene.sun.expect("validated: a clear sky has a sun");
+                Some(Arc::new(ClearSky::new(
+                    sun.zenith,
+                    sun.azimuth,
+                    *irradiance,
+                    *dop_max,
+                )?))
+            }
+            SkyModel::Table(t) => Some(Arc::new(t.clone())),
+            _ => None,
+        };
         Ok(Self {
             scene: scene.clone(),
             nodes: nodes
@@ -201,7 +334,17 @@ impl Observer {
                 .map(|((l, w), m)| (*l, *w, m))
                 .collect(),
             cache: Arc::default(),
+            polarized_sky: polarized_sky.map(|sky| {
+                let rings: Arc<[(f64, f64)]> = volume_rings(sky.as_ref()).into();
+                (sky, rings)
+            }),
         })
+    }
+
+    /// Whether every observation is the same at all view azimuths
+    /// ([`ThermalScene::is_azimuth_independent`]).
+    pub fn is_azimuth_independent(&self) -> bool {
+        self.scene.is_azimuth_independent()
     }
 
     /// The scene.
@@ -280,6 +423,15 @@ impl Observer {
     /// # Panics
     /// For a non-finite view angle.
     pub fn observe(&self, views: &[(f64, f64)]) -> Vec<Radiance> {
+        self.observe_with(views, Quality::Full)
+    }
+
+    /// As [`Observer::observe`], with the sky integral of an azimuth-dependent sky taken at
+    /// `quality` ([`Quality::Map`] for hemispherical maps).
+    ///
+    /// # Panics
+    /// For a non-finite view angle.
+    pub fn observe_with(&self, views: &[(f64, f64)], quality: Quality) -> Vec<Radiance> {
         let clamp = |t: f64| t.clamp(0.0, FRAC_PI_2 - HORIZON_MARGIN);
         // Distinct view zeniths, in first-seen order.
         let mut zeniths: Vec<f64> = Vec::new();
@@ -320,23 +472,177 @@ impl Observer {
             }
             path += w * self.scene.atmosphere.path_radiance;
         }
+        // What depends on the view azimuth: the sun and an azimuth-dependent sky, per view.
+        let per_view = self.azimuth_terms(views, clamp, quality);
         let tau = self.scene.atmosphere.transmittance;
         views
             .iter()
             .zip(&zi)
-            .map(|(&(t, p), &z)| {
-                let mut s = emitted[z].combine(tau, &reflected[z], tau);
+            .enumerate()
+            .map(|(k, (&(t, p), &z))| {
+                let reflected = match &per_view {
+                    Some(v) => reflected[z].combine(1.0, &v[k], 1.0),
+                    None => reflected[z],
+                };
+                let mut s = emitted[z].combine(tau, &reflected, tau);
                 s.0[0] += path;
                 Radiance {
                     theta_r: clamp(t),
                     phi_r: p,
                     stokes: s,
                     emitted: emitted[z],
-                    reflected: reflected[z],
+                    reflected,
                 }
             })
             .collect()
     }
+
+    /// The sun's reflection `E·cosθs·F(w_s, w_r)·s` and an azimuth-dependent sky's
+    /// `∫_H F(w, w_r)·L_sky(w) cosθ dω`, summed over the spectral nodes, per view (distinct
+    /// views in parallel); `None` when there is neither.
+    ///
+    /// When the scene is mirror-symmetric about the sun's vertical plane (a clear sky or none,
+    /// a sun whose Stokes vector has `s2 = s3 = 0`), a view at `φs − Δ` is the mirror image of
+    /// the one at `φs + Δ`: the same Stokes vector with `s2` and `s3` negated (the mirror
+    /// turns `s_out` into `−s_out'` and keeps `p_out`). Each view is folded to `Δ ∈ [0, π]` and
+    /// every distinct folded view computed once.
+    fn azimuth_terms(
+        &self,
+        views: &[(f64, f64)],
+        clamp: impl Fn(f64) -> f64 + Sync,
+        quality: Quality,
+    ) -> Option<Vec<Stokes>> {
+        use rayon::prelude::*;
+        if self.scene.sun.is_none() && self.polarized_sky.is_none() {
+            return None;
+        }
+        let mirror = match (&self.scene.sun, &self.scene.sky) {
+            (Some(sun), SkyModel::ClearSky { .. } | SkyModel::None)
+            | (Some(sun), SkyModel::Uniform { .. } | SkyModel::Thermal { .. })
+            | (Some(sun), SkyModel::Profile(_)) => {
+                (sun.stokes.0[2] == 0.0 && sun.stokes.0[3] == 0.0).then_some(sun.azimuth)
+            }
+            _ => None,
+        };
+        // Fold, and deduplicate (to 1e-12 rad).
+        let mut keys = HashMap::new();
+        let mut distinct: Vec<(f64, f64)> = Vec::new();
+        let map: Vec<(usize, bool)> = views
+            .iter()
+            .map(|&(t, p)| {
+                let t = clamp(t);
+                let (p, flipped) = match mirror {
+                    Some(ps) => {
+                        let d = (p - ps + PI).rem_euclid(2.0 * PI) - PI;
+                        (ps + d.abs(), d < 0.0)
+                    }
+                    None => (p, false),
+                };
+                let key = (t.to_bits(), (p * 1e12).round() as i64);
+                let i = *keys.entry(key).or_insert_with(|| {
+                    distinct.push((t, p));
+                    distinct.len() - 1
+                });
+                (i, flipped)
+            })
+            .collect();
+        if quality == Quality::Map {
+            let values = self.map_terms(&distinct);
+            return Some(unfold(&map, &values));
+        }
+        let values: Vec<Stokes> = distinct
+            .par_iter()
+            .map(|&(t, p)| {
+                let mut total = Stokes([0.0; 4]);
+                for (_, w, m) in &self.nodes {
+                    let mut r = Stokes([0.0; 4]);
+                    if let Some(sun) = &self.scene.sun {
+                        r = sun_term(m, sun, t, p);
+                    }
+                    if let Some((sky, rings)) = &self.polarized_sky {
+                        let sky_r = sky_reflection_prepared(m, t, p, sky.as_ref(), rings, quality)
+                            .expect("validated material and clamped angles");
+                        r = r.combine(1.0, &sky_r, 1.0);
+                    }
+                    total = total.combine(1.0, &r, *w);
+                }
+                total
+            })
+            .collect();
+        Some(unfold(&map, &values))
+    }
+
+    /// [`Observer::azimuth_terms`] for a map: the views grouped by zenith, each group's sky
+    /// integrals through [`sky_reflections_at_zenith`] (the Mueller matrices at the facet
+    /// nodes shared by every azimuth), groups in parallel.
+    fn map_terms(&self, views: &[(f64, f64)]) -> Vec<Stokes> {
+        use rayon::prelude::*;
+        let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+        let mut by_zenith: HashMap<u64, usize> = HashMap::new();
+        for (k, &(t, _)) in views.iter().enumerate() {
+            let g = *by_zenith.entry(t.to_bits()).or_insert_with(|| {
+                groups.push((t, Vec::new()));
+                groups.len() - 1
+            });
+            groups[g].1.push(k);
+        }
+        let parts: Vec<Vec<(usize, Stokes)>> = groups
+            .par_iter()
+            .map(|(t, members)| {
+                let phis: Vec<f64> = members.iter().map(|&k| views[k].1).collect();
+                let mut total = vec![Stokes([0.0; 4]); members.len()];
+                for (_, w, m) in &self.nodes {
+                    if let Some((sky, rings)) = &self.polarized_sky {
+                        let r = sky_reflections_at_zenith(
+                            m,
+                            *t,
+                            &phis,
+                            sky.as_ref(),
+                            rings,
+                            Quality::Map,
+                        );
+                        for (a, b) in total.iter_mut().zip(&r) {
+                            *a = a.combine(1.0, b, *w);
+                        }
+                    }
+                    if let Some(sun) = &self.scene.sun {
+                        for (a, &p) in total.iter_mut().zip(&phis) {
+                            *a = a.combine(1.0, &sun_term(m, sun, *t, p), *w);
+                        }
+                    }
+                }
+                members.iter().copied().zip(total).collect()
+            })
+            .collect();
+        let mut out = vec![Stokes([0.0; 4]); views.len()];
+        for (k, s) in parts.into_iter().flatten() {
+            out[k] = s;
+        }
+        out
+    }
+}
+
+/// The sun's reflection toward `(theta_r, phi_r)`: `E·cosθs·F(w_s, w_r)·s`.
+fn sun_term(m: &Material, sun: &Sun, theta_r: f64, phi_r: f64) -> Stokes {
+    let g = crate::geometry::Geometry::new(sun.zenith, sun.azimuth, theta_r, phi_r)
+        .expect("validated sun and clamped view");
+    let e = sun.irradiance * sun.zenith.cos();
+    Stokes([0.0; 4]).combine(1.0, &m.pbrdf(&g).apply(&sun.stokes), e)
+}
+
+/// The values of folded views back at every view: `(index, mirrored)` per view, a mirror image
+/// with S2 and S3 negated.
+fn unfold(map: &[(usize, bool)], values: &[Stokes]) -> Vec<Stokes> {
+    map.iter()
+        .map(|&(i, flipped)| {
+            let s = values[i];
+            if flipped {
+                Stokes([s.0[0], s.0[1], -s.0[2], -s.0[3]])
+            } else {
+                s
+            }
+        })
+        .collect()
 }
 
 /// The observed Stokes radiance of `spec` in `scene` at every view `(θr, φr)` (rad) of
