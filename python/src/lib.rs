@@ -880,30 +880,7 @@ fn positive_at(name: &'static str, value: f64, index: usize) -> Result<f64, polb
 
 /// A core [`polbrdf::Error::InvalidParameter`] about element `index` of a flat argument.
 fn at_index(e: polbrdf::Error, index: usize) -> polbrdf::Error {
-    match e {
-        polbrdf::Error::InvalidParameter {
-            name,
-            value,
-            reason,
-        } => polbrdf::Error::InvalidParameterAt {
-            name,
-            value,
-            index,
-            reason,
-        },
-        polbrdf::Error::WavelengthOutOfRange {
-            material,
-            wavelength_um,
-            range,
-            ..
-        } => polbrdf::Error::WavelengthOutOfRange {
-            material,
-            wavelength_um,
-            range,
-            position: Some(index),
-        },
-        other => other,
-    }
+    e.at_position(Some(index))
 }
 
 /// A view zenith angle (element `index` of the argument `name`, in degrees when `degrees`) in

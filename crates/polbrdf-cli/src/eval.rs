@@ -52,19 +52,9 @@ fn wavelength_err(input: &Path, table: &polbrdf_io::GeometryTable, e: polbrdf::E
             path: input.to_path_buf(),
             line,
             field: WAVELENGTH_COLUMN.into(),
+            // The line names the element: the message need not.
             message: match e {
-                polbrdf::Error::WavelengthOutOfRange {
-                    material,
-                    wavelength_um,
-                    range,
-                    ..
-                } => polbrdf::Error::WavelengthOutOfRange {
-                    material,
-                    wavelength_um,
-                    range,
-                    position: None,
-                }
-                .to_string(),
+                e @ polbrdf::Error::WavelengthOutOfRange { .. } => e.at_position(None).to_string(),
                 other => other.to_string(),
             },
         }),

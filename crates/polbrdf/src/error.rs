@@ -144,6 +144,44 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
     }
 }
 
+impl Error {
+    /// The same error about element `position` of a batch (`None`: about no element): an
+    /// [`Error::InvalidParameter`] becomes [`Error::InvalidParameterAt`] there, an
+    /// [`Error::WavelengthOutOfRange`] carries the position; any other error is unchanged.
+    pub fn at_position(self, position: Option<usize>) -> Self {
+        match (self, position) {
+            (
+                Error::InvalidParameter {
+                    name,
+                    value,
+                    reason,
+                },
+                Some(index),
+            ) => Error::InvalidParameterAt {
+                name,
+                value,
+                index,
+                reason,
+            },
+            (
+                Error::WavelengthOutOfRange {
+                    material,
+                    wavelength_um,
+                    range,
+                    ..
+                },
+                position,
+            ) => Error::WavelengthOutOfRange {
+                material,
+                wavelength_um,
+                range,
+                position,
+            },
+            (other, _) => other,
+        }
+    }
+}
+
 /// Checks that `value` is finite and `>= 0`; returns `+0.0` for `-0.0`.
 pub(crate) fn non_negative(name: &'static str, value: f64) -> Result<f64> {
     if value.is_finite() && value >= 0.0 {

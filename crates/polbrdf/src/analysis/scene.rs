@@ -17,8 +17,8 @@
 
 use crate::analysis::emission::emissivity_vectors;
 use crate::analysis::sky::{
-    sky_reflection, sky_reflection_prepared, sky_reflections_at_zenith, volume_rings, ClearSky,
-    ProfileSky, Quality, SkyRadiance, TableSky, ZenithProfile,
+    sky_reflection_prepared, sky_reflections_at_zenith, volume_rings, ClearSky, ProfileSky,
+    Quality, SkyRadiance, TableSky, ZenithProfile,
 };
 use crate::analysis::spectral::Spectrum;
 use crate::analysis::thermal::{planck, temperature};
@@ -269,6 +269,9 @@ pub struct Observer {
     cache: Arc<Mutex<HashMap<u64, Arc<[ZenithTerms]>>>>,
     /// A sky that depends on azimuth (cie-clear, table), with its volume rings.
     polarized_sky: Option<PreparedSky>,
+    /// A profile sky (azimuth-independent, through the general sky integral), with its
+    /// volume rings.
+    profile_sky: Option<PreparedSky>,
 }
 
 impl std::fmt::Debug for dyn SkyRadiance + Send {
@@ -334,10 +337,14 @@ impl Observer {
                 .map(|((l, w), m)| (*l, *w, m))
                 .collect(),
             cache: Arc::default(),
-            polarized_sky: polarized_sky.map(|sky| {
-                let rings: Arc<[(f64, f64)]> = volume_rings(sky.as_ref()).into();
-                (sky, rings)
-            }),
+            polarized_sky: polarized_sky.map(prepare),
+            profile_sky: match &scene.sky {
+                SkyModel::Profile(profile) => Some(prepare(Arc::new(ProfileSky {
+                    profile: profile.clone(),
+                    scale: 1.0,
+                }))),
+                _ => None,
+            },
         })
     }
 
@@ -377,23 +384,22 @@ impl Observer {
                 .map(|(_, _, m)| {
                     let eps = emissivity_vectors(m, &missing)
                         .expect("validated material and clamped angles");
-                    let profile: Vec<Stokes> = match &self.scene.sky {
-                        SkyModel::Profile(profile) => missing
+                    let profile: Vec<Stokes> = match &self.profile_sky {
+                        Some((sky, rings)) => missing
                             .par_iter()
                             .map(|&t| {
-                                sky_reflection(
+                                sky_reflection_prepared(
                                     m,
                                     t,
                                     0.0,
-                                    &ProfileSky {
-                                        profile: profile.clone(),
-                                        scale: 1.0,
-                                    },
+                                    sky.as_ref(),
+                                    rings,
+                                    Quality::Full,
                                 )
                                 .expect("validated material and clamped angles")
                             })
                             .collect(),
-                        _ => vec![Stokes([0.0; 4]); missing.len()],
+                        None => vec![Stokes([0.0; 4]); missing.len()],
                     };
                     eps.into_iter()
                         .zip(profile)
@@ -620,6 +626,12 @@ impl Observer {
         }
         out
     }
+}
+
+/// A sky with its volume rings, computed once ([`volume_rings`]).
+fn prepare(sky: Arc<dyn SkyRadiance + Send>) -> PreparedSky {
+    let rings: Arc<[(f64, f64)]> = volume_rings(sky.as_ref()).into();
+    (sky, rings)
 }
 
 /// The sun's reflection toward `(theta_r, phi_r)`: `E·cosθs·F(w_s, w_r)·s`.

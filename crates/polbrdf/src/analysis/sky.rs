@@ -136,23 +136,22 @@ impl SkyRadiance for ProfileSky {
     }
 }
 
-/// The unit vector toward `(theta, phi)` (rad).
-pub fn direction(theta: f64, phi: f64) -> [f64; 3] {
-    let (st, ct) = theta.sin_cos();
-    let (sp, cp) = phi.sin_cos();
-    [st * cp, st * sp, ct]
-}
+pub use crate::geometry::direction;
 
 /// The psps basis `(s_in, p_in)` of the beam arriving at the surface from the sky point in
 /// direction `(theta, phi)`: `k = −w`, `s_in = unit(z × k) = (sinφ, −cosφ, 0)` (its θ → 0⁺
 /// limit at the given azimuth at the zenith), `p_in = k × s_in` (docs/model.md §2). The one
 /// place the arriving frame is written.
 pub fn arriving_basis(theta: f64, phi: f64) -> ([f64; 3], [f64; 3]) {
-    let w = direction(theta, phi);
-    let k = [-w[0], -w[1], -w[2]];
     let (sp, cp) = phi.sin_cos();
+    basis_of(&direction(theta, phi), sp, cp)
+}
+
+/// [`arriving_basis`] of the direction `w` at azimuth φ given by `(sinφ, cosφ)`.
+fn basis_of(w: &[f64; 3], sp: f64, cp: f64) -> ([f64; 3], [f64; 3]) {
     let s = [sp, -cp, 0.0];
-    let p = cross(&k, &s);
+    // p = k × s with k = −w.
+    let p = cross(&s, w);
     (s, p)
 }
 
@@ -172,7 +171,20 @@ fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 /// and degree `P` whose electric vector is along `e`, arriving from `(theta, phi)`, in the
 /// arriving beam's basis: `ψ = atan2(e·p_in, e·s_in)` ([`arriving_basis`]).
 pub fn linear_stokes(radiance: f64, dolp: f64, e: &[f64; 3], theta: f64, phi: f64) -> Stokes {
-    let (s, p) = arriving_basis(theta, phi);
+    let (sp, cp) = phi.sin_cos();
+    linear_stokes_of(radiance, dolp, e, &direction(theta, phi), sp, cp)
+}
+
+/// [`linear_stokes`] arriving from the direction `w` at azimuth φ given by `(sinφ, cosφ)`.
+fn linear_stokes_of(
+    radiance: f64,
+    dolp: f64,
+    e: &[f64; 3],
+    w: &[f64; 3],
+    sp: f64,
+    cp: f64,
+) -> Stokes {
+    let (s, p) = basis_of(w, sp, cp);
     let (x, y) = (dot(e, &s), dot(e, &p));
     let r2 = x * x + y * y;
     if r2.is_nan() || r2 <= 0.0 || dolp == 0.0 {
@@ -254,18 +266,21 @@ impl ClearSky {
 
     /// `f(γ)·φ(Z)` toward `(theta, phi)`.
     pub fn relative_radiance(&self, theta: f64, phi: f64) -> f64 {
+        self.relative_at(&direction(theta, phi)).0
+    }
+
+    /// `(f(γ)·φ(Z), cosγ)` toward the unit vector `w`: the one place the CIE formula is written.
+    fn relative_at(&self, w: &[f64; 3]) -> (f64, f64) {
         let (a, b, c, d, e) = Self::CIE12;
-        let w = direction(theta, phi);
-        let cg = dot(&w, &self.sun).clamp(-1.0, 1.0);
-        let gamma = cg.acos();
-        let f = 1.0 + c * ((d * gamma).exp() - (d * FRAC_PI_2).exp()) + e * cg * cg;
-        let ct = theta.cos();
+        let cg = dot(w, &self.sun).clamp(-1.0, 1.0);
+        let f = 1.0 + c * ((d * cg.acos()).exp() - (d * FRAC_PI_2).exp()) + e * cg * cg;
+        let ct = w[2];
         let grad = if ct > 0.0 {
             1.0 + a * (b / ct).exp()
         } else {
             1.0
         };
-        f * grad
+        (f * grad, cg)
     }
 
     /// `∫_H f(γ)·φ(Z) cosθ dω` on a product rule with the sun at a panel corner
@@ -292,7 +307,11 @@ impl ClearSky {
 
     /// The Rayleigh DoLP `δ_max·sin²γ/(1 + cos²γ)` at angle `gamma` from the sun.
     pub fn dolp_at(&self, gamma: f64) -> f64 {
-        let c = gamma.cos();
+        self.dolp_of_cos(gamma.cos())
+    }
+
+    /// [`ClearSky::dolp_at`] of `cosγ`.
+    fn dolp_of_cos(&self, c: f64) -> f64 {
         self.dop_max * (1.0 - c * c) / (1.0 + c * c)
     }
 }
@@ -334,38 +353,22 @@ impl SkyRadiance for ClearSky {
         Some((self.sun_zenith, self.sun_azimuth))
     }
 
-    /// [`ClearSky::relative_radiance`] times `scale`, and [`linear_stokes`] along `w × w_s`
-    /// with [`ClearSky::dolp_at`], written out so that each trigonometric function is taken
-    /// once (this runs at every node of every sky integral).
+    /// [`ClearSky::relative_radiance`] times `scale`, with [`ClearSky::dolp_at`] along
+    /// `w × w_s` ([`linear_stokes`]); the direction's trigonometric functions taken once (this
+    /// runs at every node of every sky integral).
     fn stokes(&self, theta: f64, phi: f64) -> Stokes {
-        let (a, b, c, d, e) = Self::CIE12;
         let (st, ct) = theta.sin_cos();
         let (sp, cp) = phi.sin_cos();
         let w = [st * cp, st * sp, ct];
-        let cg = dot(&w, &self.sun).clamp(-1.0, 1.0);
-        let f = 1.0 + c * ((d * cg.acos()).exp() - (d * FRAC_PI_2).exp()) + e * cg * cg;
-        let grad = if ct > 0.0 {
-            1.0 + a * (b / ct).exp()
-        } else {
-            1.0
-        };
-        let l = self.scale * f * grad;
-        let dolp = self.dop_max * (1.0 - cg * cg) / (1.0 + cg * cg);
-        // e = w × w_s in the arriving basis s = (sinφ, −cosφ, 0), p = k × s = −w × s.
-        let ev = cross(&w, &self.sun);
-        let s_in = [sp, -cp, 0.0];
-        let p_in = cross(&s_in, &w);
-        let (x, y) = (dot(&ev, &s_in), dot(&ev, &p_in));
-        let r2 = x * x + y * y;
-        if r2.is_nan() || r2 <= 0.0 || dolp == 0.0 {
-            return Stokes([l, 0.0, 0.0, 0.0]);
-        }
-        Stokes([
-            l,
-            l * dolp * (x * x - y * y) / r2,
-            l * dolp * 2.0 * x * y / r2,
-            0.0,
-        ])
+        let (rel, cg) = self.relative_at(&w);
+        linear_stokes_of(
+            self.scale * rel,
+            self.dolp_of_cos(cg),
+            &cross(&w, &self.sun),
+            &w,
+            sp,
+            cp,
+        )
     }
 }
 
