@@ -928,28 +928,32 @@ impl MuellerOut for [f32; 16] {
     #[inline(always)]
     fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
         let n = dst.len().min(src.len());
-        let mut staged = [[0.0f32; 16]; BLOCK];
+        // Flat, so that the conversion is one vectorized loop.
+        let (dst, src) = (dst[..n].as_flattened_mut(), src[..n].as_flattened());
         let mut overflow = false;
-        for (d, s) in dst[..n].chunks_mut(BLOCK).zip(src[..n].chunks(BLOCK)) {
-            for (o, v) in staged.iter_mut().zip(s) {
-                for e in 0..16 {
-                    o[e] = v[e] as f32;
-                    overflow |= o[e].is_infinite() & v[e].is_finite();
+        #[cfg(target_arch = "x86_64")]
+        if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
+            use std::arch::x86_64::{_mm_loadu_ps, _mm_stream_ps};
+            let mut staged = [0.0f32; 16 * BLOCK];
+            for (d, s) in dst.chunks_mut(16 * BLOCK).zip(src.chunks(16 * BLOCK)) {
+                for (o, x) in staged.iter_mut().zip(s) {
+                    *o = *x as f32;
+                    overflow |= o.is_infinite() & x.is_finite();
                 }
-            }
-            #[cfg(target_arch = "x86_64")]
-            if stream && (d.as_ptr() as usize).is_multiple_of(16) {
-                use std::arch::x86_64::{_mm_loadu_ps, _mm_stream_ps};
-                let (dp, sp) = (d.as_mut_ptr().cast::<f32>(), staged.as_ptr().cast::<f32>());
-                for i in (0..16 * d.len()).step_by(4) {
-                    // SAFETY: `dp` and `sp` are valid for 16·d.len() f32 each (d.len() ≤ BLOCK),
-                    // `dp` is 16-byte aligned (so is every offset of 4 f32 from it), and SSE is
+                for i in (0..d.len()).step_by(4) {
+                    // SAFETY: `d` and `staged` hold at least `d.len()` f32 (a multiple of 16),
+                    // `d` is 16-byte aligned (so is every offset of 4 f32 from it), and SSE is
                     // part of x86-64.
-                    unsafe { _mm_stream_ps(dp.add(i), _mm_loadu_ps(sp.add(i))) };
+                    unsafe {
+                        _mm_stream_ps(d.as_mut_ptr().add(i), _mm_loadu_ps(staged.as_ptr().add(i)))
+                    };
                 }
-                continue;
             }
-            d.copy_from_slice(&staged[..d.len()]);
+            return overflow;
+        }
+        for (o, x) in dst.iter_mut().zip(src) {
+            *o = *x as f32;
+            overflow |= o.is_infinite() & x.is_finite();
         }
         overflow
     }
