@@ -38,6 +38,8 @@ def main() -> None:
     ti, tr = rng.uniform(0, 89.9, (2, n))
     pi, pr = rng.uniform(0, 360, (2, n))
     rad = [np.radians(x) for x in (ti, pi, tr, pr)]
+    out64 = np.empty((n, 4, 4))
+    out32 = np.empty((n, 4, 4), dtype=np.float32)
     print(f"{n} geometries of `paint`, medians of {repeats} (ms); cores: {os.cpu_count()}")
     cases: list[tuple[str, Callable[[], object]]] = [
         ("mueller, degrees (converted in Rust)", lambda: polbrdf.mueller(paint, ti, pi, tr, pr)),
@@ -48,6 +50,18 @@ def main() -> None:
             ),
         ),
         ("mueller, radians input", lambda: polbrdf.mueller(paint, *rad, degrees=False)),
+        (
+            "mueller, radians input, out= reused",
+            lambda: polbrdf.mueller(paint, *rad, degrees=False, out=out64),
+        ),
+        (
+            "mueller float32, radians input, out= reused",
+            lambda: polbrdf.mueller(paint, *rad, degrees=False, out=out32),
+        ),
+        (
+            "mueller float32, radians input, new array",
+            lambda: polbrdf.mueller(paint, *rad, degrees=False, precision="float32"),
+        ),
         ("brdf, degrees (brdf+dolp pass)", lambda: polbrdf.brdf(paint, ti, pi, tr, pr)),
         ("dolp, radians input", lambda: polbrdf.dolp(paint, *rad, degrees=False)),
         ("evaluate (brdf, dolp, aolp)", lambda: polbrdf.evaluate(paint, ti, pi, tr, pr)),

@@ -93,6 +93,13 @@ fn main() -> Result<(), polbrdf::Error> {
         std::hint::black_box(&out);
     });
     report("mueller (validate + mueller_into, new output)", t);
+    let mut out32 = vec![[0.0f32; 16]; n];
+    let engine = polbrdf::Engine::new(&material);
+    let t = median_ms(repeats, || {
+        let b = GeometryBatch::new(&ti, &pi, &tr, &pr).unwrap();
+        engine.mueller_f32_into(&b, &mut out32).unwrap();
+    });
+    report("mueller f32 (validate + mueller_f32_into, reused)", t);
 
     let (mut f, mut d) = (vec![0.0; n], vec![0.0; n]);
     let t = median_ms(repeats, || {

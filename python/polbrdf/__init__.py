@@ -116,10 +116,12 @@ def _check_material(material: Material) -> None:
 
 
 def _broadcast(
-    names: Sequence[str], values: tuple[ArrayLike, ...]
+    names: Sequence[str], values: tuple[ArrayLike, ...], singles: int = 0
 ) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
     """Broadcast the arguments ``values`` (named ``names``); return the shape and the flat
-    C-contiguous float64 arrays (views when the input already is one, copies otherwise)."""
+    C-contiguous float64 arrays (views when the input already is one, copies otherwise). The
+    first ``singles`` arguments are passed as one value when they hold one (a scalar), for the
+    Rust side to broadcast without a materialized array."""
     arrays = []
     for name, a in zip(names, values):
         arr = np.asarray(a)
@@ -132,19 +134,24 @@ def _broadcast(
         shapes = ", ".join(f"{n}: {a.shape}" for n, a in zip(names, arrays))
         raise ValueError(f"arrays do not broadcast together ({shapes})") from e
     shape = b[0].shape
-    flat = tuple(np.ascontiguousarray(x, dtype=np.float64).reshape(-1) for x in b)
+    flat = tuple(
+        np.ascontiguousarray(a if i < singles and a.size == 1 else x, dtype=np.float64).reshape(-1)
+        for i, (a, x) in enumerate(zip(arrays, b))
+    )
     return shape, flat
 
 
 def _flatten(
     material: Material,
     angles: tuple[ArrayLike, ...],
+    singles: bool = False,
 ) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
     """Broadcast the four angle arguments (and the wavelength, when given: a fifth); return the
     shape and the flat C-contiguous float64 arrays (views when the input already is one,
-    copies otherwise)."""
+    copies otherwise). With ``singles``, a scalar angle stays one value (the engine calls
+    broadcast it)."""
     _check_material(material)
-    return _broadcast(_NAMES, angles)
+    return _broadcast(_NAMES, angles, 4 if singles else 0)
 
 
 def _args(
@@ -175,7 +182,9 @@ def mueller(
     *,
     degrees: bool = True,
     wavelength_um: ArrayLike | None = None,
-) -> NDArray[np.float64]:
+    out: NDArray[np.floating] | None = None,
+    precision: str | type | np.dtype | None = None,
+) -> NDArray[np.floating]:
     """The pBRDF F: the 4×4 Mueller-matrix BRDF (eq. 9 corrected), in sr⁻¹, psps basis.
 
     Parameters
@@ -193,27 +202,72 @@ def mueller(
         (``Material(index=...)``) is evaluated with its index at each wavelength — one call
         covers wavelengths × geometries. Required for such a material; a constant index does
         not depend on it.
+    out : ndarray, optional
+        An array to write the result into (NumPy's ``out=`` convention), returned: shape
+        ``broadcast_shape + (4, 4)``, dtype float64 or float32 (the precision), C-contiguous
+        and writeable. Reusing it saves the allocation and the page faults of a new array.
+    precision : {"float64", "float32"} or dtype, optional
+        The result's dtype (default float64, or ``out``'s dtype). Every entry is computed in
+        float64; float32 rounds each to the nearest float32 when stored (within 6e-8·F00 of
+        float64, docs/model.md §12) — half the memory. Fits and the reference use float64.
 
     Returns
     -------
-    ndarray of float64, shape ``broadcast_shape + (4, 4)``
+    ndarray of float64 (or float32), shape ``broadcast_shape + (4, 4)``
         ``F[..., i, j]`` in sr⁻¹; ``F[..., 0, 0]`` is the scalar BRDF. Zero where a direction
-        is at or below the horizon.
+        is at or below the horizon. ``out`` when given.
 
     Raises
     ------
     ValueError
         For NaN/inf angles or zenith angles outside [0°, 180°], naming the argument, value and
-        flat index; or when the arguments do not broadcast.
+        flat index; when the arguments do not broadcast; for an unknown precision, an ``out``
+        of the wrong shape, dtype or layout or not writeable; in float32, for an entry beyond
+        float32's range (|F| > 3.4e38 sr⁻¹).
     TypeError
-        For a non-Material ``material`` or non-real angles.
+        For a non-Material ``material``, non-real angles or an ``out`` that is not an ndarray.
     """
-    shape, flat = _flatten(material, _args((theta_i, phi_i, theta_r, phi_r), wavelength_um))
+    dtype = _precision(precision, out)
+    angles = (theta_i, phi_i, theta_r, phi_r)
+    shape, flat = _flatten(material, _args(angles, wavelength_um), singles=True)
+    rows = None if out is None else _out_rows(out, shape + (4, 4), dtype)
     try:
-        out = _polbrdf.mueller_flat(material, *flat[:4], degrees, _wl(flat))
+        res = _polbrdf.mueller_flat(material, *flat[:4], degrees, _wl(flat), rows, dtype.name)
     except ValueError as e:
         raise _located(e, shape) from None
-    return out.reshape(shape + (4, 4))
+    return out if out is not None else res.reshape(shape + (4, 4))
+
+
+def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) -> np.dtype:
+    """The result dtype of ``precision`` (float64 or float32), ``out``'s when not given."""
+    if out is not None and not isinstance(out, np.ndarray):
+        raise TypeError(f"`out` must be a numpy.ndarray, not {type(out).__name__}")
+    if precision is None:
+        dtype = np.dtype(np.float64) if out is None else out.dtype
+    else:
+        try:
+            dtype = np.dtype(precision)
+        except TypeError:
+            dtype = None
+        if dtype not in (np.float64, np.float32):
+            raise ValueError(f'unknown precision {precision!r}: expected "float64" or "float32"')
+    if dtype not in (np.float64, np.float32):
+        raise ValueError(f"`out` must have dtype float64 or float32, got {dtype}")
+    if out is not None and out.dtype != dtype:
+        raise ValueError(f"`out` has dtype {out.dtype}, the precision is {dtype}")
+    return dtype
+
+
+def _out_rows(out: np.ndarray, shape: tuple[int, ...], dtype: np.dtype) -> np.ndarray:
+    """The ``(n, 16)`` view of a caller's output array, after checking it (shape, dtype,
+    C-contiguous, writeable): numpy's ``out=`` convention, without copies."""
+    if out.shape != shape:
+        raise ValueError(f"`out` has shape {out.shape}, the result has shape {shape}")
+    if not out.flags.c_contiguous:
+        raise ValueError("`out` must be C-contiguous")
+    if not out.flags.writeable:
+        raise ValueError("`out` must be writeable")
+    return out.reshape(-1, 16)
 
 
 def index(material: Material, wavelength_um: ArrayLike) -> NDArray[np.complex128]:
@@ -249,7 +303,7 @@ def _brdf_dolp(
     degrees: bool,
     wavelength_um: ArrayLike | None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    shape, flat = _flatten(material, _args(angles, wavelength_um))
+    shape, flat = _flatten(material, _args(angles, wavelength_um), singles=True)
     try:
         f, d = _polbrdf.brdf_dolp_flat(material, *flat[:4], degrees, _wl(flat))
     except ValueError as e:
@@ -313,7 +367,8 @@ def evaluate(
     toward its p axis; 0 without linear polarization. Arguments, broadcasting and errors as
     :func:`mueller`. Returns an :class:`Evaluation` named tuple.
     """
-    shape, flat = _flatten(material, _args((theta_i, phi_i, theta_r, phi_r), wavelength_um))
+    angles = (theta_i, phi_i, theta_r, phi_r)
+    shape, flat = _flatten(material, _args(angles, wavelength_um), singles=True)
     try:
         f, d, a, m = _polbrdf.evaluate_flat(material, *flat[:4], degrees, with_mueller, _wl(flat))
     except ValueError as e:

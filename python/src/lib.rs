@@ -17,11 +17,15 @@
 //! `InconsistentParameters` / `UnknownPreset` become `ValueError` with the core's message, file
 //! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
 
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use polbrdf::analysis::emission::{emissivities, Emissivity};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{TableSky, ZenithProfile};
 use polbrdf::analysis::thermal;
+use polbrdf::engine::batch::STREAM_MIN;
+use polbrdf::engine::{Kernel, Precision};
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
 use polbrdf::GeometryBatch;
@@ -577,6 +581,28 @@ fn common_len(input: [&[f64]; 4]) -> Result<usize, polbrdf::Error> {
     Ok(n)
 }
 
+/// The length of four angle arrays each of which is `n` long or a single value broadcast to
+/// every element (the Python layer passes a scalar argument so, not materialized): the
+/// wavelengths' length when given (always `n` long), else 0 when one is empty (as numpy
+/// broadcasts), else the longest.
+fn broadcast_len(input: [&[f64]; 4], wavelengths: Option<usize>) -> Result<usize, polbrdf::Error> {
+    let n = match wavelengths {
+        Some(n) => n,
+        None if input.iter().any(|s| s.is_empty()) => 0,
+        None => input.iter().map(|s| s.len()).max().unwrap_or(0),
+    };
+    for (s, name) in input.iter().zip(["theta_i", "phi_i", "theta_r", "phi_r"]) {
+        if s.len() != n && s.len() != 1 {
+            return Err(polbrdf::Error::LengthMismatch {
+                name,
+                got: s.len(),
+                expected: n,
+            });
+        }
+    }
+    Ok(n)
+}
+
 /// Runs `f` on the geometries `start .. start + len` (`len ≤ CHUNK`) as a validated core batch
 /// ([`GeometryBatch::new`]) in radians. With `degrees` the chunk is first converted into a
 /// buffer on the stack (`f64::to_radians`, as `Geometry::from_degrees` does): the conversion
@@ -592,24 +618,32 @@ fn chunk_batch<T>(
     degrees: bool,
     f: impl FnOnce(&GeometryBatch<'_>) -> Result<T, polbrdf::Error>,
 ) -> Result<T, polbrdf::Error> {
-    let part = input.map(|s| &s[start..start + len]);
+    // A single value (broadcast) stands for every element.
+    let part = input.map(|s| {
+        if s.len() == 1 {
+            s
+        } else {
+            &s[start..start + len]
+        }
+    });
     let mut buf = [[0.0f64; CHUNK]; 4];
-    let rad: [&[f64]; 4] = if degrees {
-        for (b, s) in buf.iter_mut().zip(part) {
+    let mut rad: [&[f64]; 4] = part;
+    for ((b, s), r) in buf.iter_mut().zip(part).zip(rad.iter_mut()) {
+        if s.len() == 1 && len != 1 {
+            b[..len].fill(if degrees { s[0].to_radians() } else { s[0] });
+            *r = &b[..len];
+        } else if degrees {
             for (r, d) in b.iter_mut().zip(s) {
                 *r = d.to_radians();
             }
+            *r = &b[..len];
         }
-        let [a, b, c, d] = &buf;
-        [&a[..len], &b[..len], &c[..len], &d[..len]]
-    } else {
-        part
-    };
+    }
     let batch = GeometryBatch::new(rad[0], rad[1], rad[2], rad[3]).map_err(|e| match e {
         polbrdf::Error::InvalidAngle { index: Some(i), .. } if degrees => {
             // The element as given, in degrees, as `Geometry::from_degrees` checks it; named
             // by the Python argument.
-            let [a, b, c, d] = part.map(|s| s[i]);
+            let [a, b, c, d] = part.map(|s| s[if s.len() == 1 { 0 } else { i }]);
             match polbrdf::Geometry::from_degrees(a, b, c, d) {
                 Err(polbrdf::Error::InvalidAngle {
                     name,
@@ -652,10 +686,63 @@ fn python_name(core: &'static str) -> &'static str {
         .unwrap_or(core)
 }
 
-/// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` float64 array, row-major
-/// 4×4 per geometry. The Python layer reshapes it to `shape + (4, 4)`.
+/// Evaluates the pBRDF of the geometries `input` into `rows` (one row-major 4×4 per geometry),
+/// in parallel chunks of [`CHUNK`], each through the serial kernel (`store`: `mueller_into` or
+/// `mueller_f32_into`, which reports an entry beyond f32's range), with non-temporal stores for
+/// outputs beyond 8 MB as the batch API does.
+fn mueller_rows<T: Send>(
+    m: &Material,
+    input: [&[f64]; 4],
+    wl: Option<&[f64]>,
+    degrees: bool,
+    rows: &mut [[T; 16]],
+    store: impl Fn(&Kernel<'_>, &GeometryBatch<'_>, &mut [[T; 16]]) -> bool + Sync,
+) -> Result<(), polbrdf::Error> {
+    let stream = size_of_val(rows) >= 16 * 8 * STREAM_MIN;
+    let overflow = rows
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(c, rows)| {
+            chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
+                with_engine(m, wl, c * CHUNK, rows.len(), |e| {
+                    Ok(store(&e.kernel().clone().streaming(stream), b, rows))
+                })
+            })
+        })
+        .try_reduce(|| false, |a, b| Ok(a | b))?;
+    if overflow {
+        return Err(polbrdf::engine::batch::f32_overflow());
+    }
+    Ok(())
+}
+
+/// A caller's output array for `n` pBRDFs: an `(n, 16)` C-contiguous, writeable array of the
+/// precision's dtype (the Python layer checks the user's array and passes this view of it).
+fn out_rows<'py, T: numpy::Element>(
+    out: &Bound<'py, PyAny>,
+    n: usize,
+    dtype: &str,
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    let a = out.cast::<PyArray2<T>>().map_err(|_| {
+        PyValueError::new_err(format!(
+            "`out` must be a 2-D {dtype} array of shape ({n}, 16)"
+        ))
+    })?;
+    if a.shape() != [n, 16] || !a.is_c_contiguous() {
+        return Err(PyValueError::new_err(format!(
+            "`out` must be a C-contiguous {dtype} array of shape ({n}, 16), got shape {:?}",
+            a.shape()
+        )));
+    }
+    Ok(a.clone())
+}
+
+/// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` array, row-major 4×4 per
+/// geometry, in `precision` (`"float64"`, or `"float32"`: each entry computed in f64 and rounded
+/// when stored), written into `out` when given (an `(n, 16)` C-contiguous array of that dtype,
+/// which is returned). The Python layer reshapes it to `shape + (4, 4)`.
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None))]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None, out=None, precision="float64"))]
 #[allow(clippy::too_many_arguments)]
 fn mueller_flat<'py>(
     py: Python<'py>,
@@ -666,28 +753,56 @@ fn mueller_flat<'py>(
     phi_r: PyReadonlyArray1<'py, f64>,
     degrees: bool,
     wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    out: Option<Bound<'py, PyAny>>,
+    precision: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let precision: Precision = precision.parse().map_err(|e| core_err(py, &e))?;
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
-    let n = common_len(input).map_err(|e| core_err(py, &e))?;
-    let wl = wavelength_slice(&wavelength_um, n)?;
-    let out = PyArray2::<f64>::zeros(py, [n, 16], false);
-    {
-        let mut rw = out.readwrite();
-        let flat = rw.as_slice_mut().expect("a new array is contiguous");
-        let m = &material.inner;
-        py.detach(|| {
-            let (rows, _) = flat.as_chunks_mut::<16>();
-            rows.par_chunks_mut(CHUNK)
-                .enumerate()
-                .try_for_each(|(c, rows)| {
-                    chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
-                        with_engine(m, wl, c * CHUNK, rows.len(), |e| e.mueller_into(b, rows))
-                    })
-                })
-        })
+    let n = broadcast_len(input, wavelength_um.as_ref().map(|w| w.len()))
         .map_err(|e| core_err(py, &e))?;
+    let wl = wavelength_slice(&wavelength_um, n)?;
+    let m = &material.inner;
+    match precision {
+        Precision::F64 => {
+            let arr = match &out {
+                Some(o) => out_rows::<f64>(o, n, "float64")?,
+                None => PyArray2::<f64>::zeros(py, [n, 16], false),
+            };
+            let mut rw = arr.try_readwrite().map_err(|e| {
+                PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
+            })?;
+            let flat = rw.as_slice_mut().expect("checked C-contiguous");
+            let (rows, _) = flat.as_chunks_mut::<16>();
+            py.detach(|| {
+                mueller_rows(m, input, wl, degrees, rows, |k, b, r| {
+                    k.mueller_into(b, 0, r);
+                    false
+                })
+            })
+            .map_err(|e| core_err(py, &e))?;
+            drop(rw);
+            Ok(arr.into_any())
+        }
+        Precision::F32 => {
+            let arr = match &out {
+                Some(o) => out_rows::<f32>(o, n, "float32")?,
+                None => PyArray2::<f32>::zeros(py, [n, 16], false),
+            };
+            let mut rw = arr.try_readwrite().map_err(|e| {
+                PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
+            })?;
+            let flat = rw.as_slice_mut().expect("checked C-contiguous");
+            let (rows, _) = flat.as_chunks_mut::<16>();
+            py.detach(|| {
+                mueller_rows(m, input, wl, degrees, rows, |k, b, r| {
+                    k.mueller_f32_into(b, 0, r)
+                })
+            })
+            .map_err(|e| core_err(py, &e))?;
+            drop(rw);
+            Ok(arr.into_any())
+        }
     }
-    Ok(out)
 }
 
 /// The scalar BRDF `f` (sr⁻¹) and the DoLP for unpolarized input at `n` geometries, as two
@@ -706,7 +821,8 @@ fn brdf_dolp_flat<'py>(
     wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<ArrayPair<'py>> {
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
-    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let n = broadcast_len(input, wavelength_um.as_ref().map(|w| w.len()))
+        .map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
     let brdf = PyArray1::<f64>::zeros(py, n, false);
     let dolp = PyArray1::<f64>::zeros(py, n, false);
@@ -754,7 +870,8 @@ fn evaluate_flat<'py>(
     wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Evaluated<'py>> {
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
-    let n = common_len(input).map_err(|e| core_err(py, &e))?;
+    let n = broadcast_len(input, wavelength_um.as_ref().map(|w| w.len()))
+        .map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
     let brdf = PyArray1::<f64>::zeros(py, n, false);
     let dolp = PyArray1::<f64>::zeros(py, n, false);

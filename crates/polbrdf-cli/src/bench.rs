@@ -13,6 +13,7 @@ use polbrdf::batch;
 use polbrdf::engine::{Engine, IndexColumns, Kernel};
 use polbrdf::Geometry;
 use polbrdf::GeometryBatch;
+use rayon::prelude::*;
 use serde_json::json;
 use std::hint::black_box;
 use std::time::Instant;
@@ -58,6 +59,27 @@ fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
     )
 }
 
+/// The memory write bandwidth (bytes/s) on `threads` threads: the time to fill `n` rows of 16
+/// f64 (the size of a full-Mueller output of `n` elements) in parallel chunks, median of
+/// `repeats` — the roofline of a full-Mueller batch is this over 128 bytes per element
+/// (64 in f32).
+fn write_bandwidth(threads: usize, repeats: usize, n: usize) -> Result<f64, CliError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| CliError::Invalid(format!("--threads = {threads}: {e}")))?;
+    let mut buf = vec![[0.0f64; 16]; n];
+    let mut x = 0.0;
+    let s = pool.install(|| {
+        median_seconds(repeats, || {
+            x += 1.0;
+            buf.par_chunks_mut(4096).for_each(|c| c.fill([x; 16]));
+            black_box(&mut buf);
+        })
+    });
+    Ok(size_of_val(buf.as_slice()) as f64 / s)
+}
+
 /// The CPU model from /proc/cpuinfo ("model name"), or the architecture elsewhere.
 fn cpu_model() -> String {
     std::fs::read_to_string("/proc/cpuinfo")
@@ -75,6 +97,8 @@ fn cpu_model() -> String {
 struct Run {
     threads: usize,
     mueller_s: f64,
+    /// Full Mueller in single precision (`Engine::mueller_f32_into`).
+    mueller_f32_s: f64,
     brdf_dolp_s: f64,
     mueller_sum: f64,
     brdf_sum: f64,
@@ -100,6 +124,16 @@ fn run_with(
             black_box(&mut out);
         })
     });
+    let mut out32 = vec![[0.0f32; 16]; n];
+    let engine = Engine::new(material);
+    let mueller_f32_s = pool.install(|| {
+        median_seconds(repeats, || {
+            engine
+                .mueller_f32_into(batch, &mut out32)
+                .expect("lengths match, paint within f32");
+            black_box(&mut out32);
+        })
+    });
     let brdf_dolp_s = pool.install(|| {
         median_seconds(repeats, || {
             batch::brdf_dolp_into(material, batch, &mut brdf, &mut dolp).expect("lengths match");
@@ -109,6 +143,7 @@ fn run_with(
     Ok(Run {
         threads,
         mueller_s,
+        mueller_f32_s,
         brdf_dolp_s,
         mueller_sum: out.iter().flatten().sum(),
         brdf_sum: brdf.iter().sum(),
@@ -402,6 +437,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .iter()
         .map(|&t| run_with(t, args.repeats, &material, &batch))
         .collect::<Result<Vec<_>, _>>()?;
+    let bandwidth = write_bandwidth(threads, args.repeats, n)?;
     let index = run_index(args.repeats, &material, &batch)?;
     let emission = run_emission(args.repeats, threads)?;
     let kernel = Kernel::new(&material);
@@ -423,6 +459,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 json!({
                     "threads": r.threads,
                     "mueller_evals_per_s": per_s(r.mueller_s),
+                    "mueller_f32_evals_per_s": per_s(r.mueller_f32_s),
                     "brdf_dolp_evals_per_s": per_s(r.brdf_dolp_s),
                     "mueller_seconds": r.mueller_s,
                     "brdf_dolp_seconds": r.brdf_dolp_s,
@@ -451,6 +488,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "statistic": "median",
             "cpu": {"model": cpu, "logical_cpus": all, "simd": simd},
             "results": results,
+            "write_bandwidth": {
+                "threads": threads,
+                "bytes_per_s": bandwidth,
+                "full_mueller_roofline_evals_per_s": bandwidth / 128.0,
+                "full_mueller_f32_roofline_evals_per_s": bandwidth / 64.0,
+            },
             "per_element_index": {
                 "threads": threads,
                 "constant_index_brdf_dolp_evals_per_s": per_s(index.constant_s),
@@ -501,17 +544,26 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         println!("CPU: {cpu} ({all} logical CPUs); kernel SIMD level: {simd}");
         println!();
         println!(
-            "{:<10} {:>22} {:>22}",
-            "threads", "full Mueller", "BRDF + DoLP"
+            "{:<10} {:>22} {:>22} {:>22}",
+            "threads", "full Mueller", "full Mueller, f32", "BRDF + DoLP"
         );
         for r in &runs {
             println!(
-                "{:<10} {:>15.2} M/s   {:>15.2} M/s",
+                "{:<10} {:>15.2} M/s   {:>15.2} M/s   {:>15.2} M/s",
                 r.threads,
                 per_s(r.mueller_s) / 1e6,
+                per_s(r.mueller_f32_s) / 1e6,
                 per_s(r.brdf_dolp_s) / 1e6
             );
         }
+        println!(
+            "memory write bandwidth ({threads} threads, {:.0} MB filled): {:.1} GB/s — the \
+             full-Mueller roofline is {:.1} M/s in f64 (128 B each), {:.1} M/s in f32",
+            (n * 128) as f64 / 1e6,
+            bandwidth / 1e9,
+            bandwidth / 128e6,
+            bandwidth / 64e6
+        );
         println!();
         println!(
             "BRDF + DoLP with a complex index per element ({threads} threads): \

@@ -249,7 +249,7 @@ fn every_test_vector_matches_the_reference_path() {
 }
 
 /// A random material over the whole parameter space the kernel is meant for.
-fn random_material(rng: &mut Rng) -> MaterialSpec {
+pub fn random_material(rng: &mut Rng) -> MaterialSpec {
     let (n, k) = match rng.below(4) {
         0 => (rng.range(1.15, 2.6), 0.0),                 // dielectric
         1 => (rng.range(0.2, 0.92), 0.0),                 // n < 1
@@ -288,7 +288,7 @@ fn random_material(rng: &mut Rng) -> MaterialSpec {
 }
 
 /// A random geometry (radians), drawn from ordinary and degenerate families.
-fn random_geometry(rng: &mut Rng) -> [f64; 4] {
+pub fn random_geometry(rng: &mut Rng) -> [f64; 4] {
     let max = 89.999f64.to_radians();
     let theta = |rng: &mut Rng| rng.range(0.0, max);
     let phi = |rng: &mut Rng| rng.range(-2.0 * PI, 4.0 * PI);

@@ -9,6 +9,7 @@ mod emission;
 mod golden;
 mod kernel;
 mod limits;
+mod precision;
 mod properties;
 mod spectral;
 mod vectors;

@@ -22,8 +22,55 @@ fn chunk_len(n: usize) -> usize {
     per.clamp(8 * BLOCK, CHUNK)
 }
 
-/// Full-Mueller outputs of at least this many elements (8 MB) bypass the caches.
-const STREAM_MIN: usize = 1 << 16;
+/// Full-Mueller outputs of at least this many elements (8 MB in f64) bypass the caches
+/// ([`Kernel::streaming`]).
+pub const STREAM_MIN: usize = 1 << 16;
+
+/// The floating-point format of the results (docs/model.md §12, "Precision"). Every result is
+/// computed in f64; [`Precision::F32`] rounds each to the nearest f32 as it is stored — half
+/// the memory and the memory traffic of a full-Mueller batch, within `1e-7·F00` of the f64
+/// result. f64 stays the default and the reference (fits use it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Precision {
+    /// Double precision (the default).
+    #[default]
+    F64,
+    /// Single precision: f64 results rounded to f32 when stored.
+    F32,
+}
+
+impl Precision {
+    /// `"float64"` or `"float32"` (NumPy's names).
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F64 => "float64",
+            Precision::F32 => "float32",
+        }
+    }
+}
+
+impl std::str::FromStr for Precision {
+    type Err = crate::Error;
+
+    /// `float64`/`f64` or `float32`/`f32`.
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "float64" | "f64" => Ok(Precision::F64),
+            "float32" | "f32" => Ok(Precision::F32),
+            _ => Err(crate::Error::InconsistentParameters(format!(
+                "unknown precision {s:?}: expected \"float64\" or \"float32\""
+            ))),
+        }
+    }
+}
+
+/// The refusal of a single-precision result beyond f32's range ([`Engine::mueller_f32_into`]).
+pub fn f32_overflow() -> crate::Error {
+    crate::Error::InconsistentParameters(format!(
+        "a pBRDF entry exceeds the float32 range (|F| > {:e} sr⁻¹): use float64",
+        f32::MAX
+    ))
+}
 
 /// The engine for one material: evaluates batches in parallel, optionally with a complex index
 /// per element ([`Engine::with_index`]).
@@ -111,6 +158,31 @@ impl<'a> Engine<'a> {
         out.par_chunks_mut(len)
             .enumerate()
             .for_each(|(c, chunk)| kernel.mueller_into(batch, c * len, chunk));
+        Ok(())
+    }
+
+    /// As [`Engine::mueller_into`] in single precision ([`Precision::F32`]): each entry
+    /// computed in f64 and rounded to the nearest f32 as it is stored.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] as [`Engine::mueller_into`];
+    /// [`crate::Error::InconsistentParameters`] when an entry is beyond f32's range
+    /// (`|F| > 3.4·10³⁸` sr⁻¹, only for extremely narrow distributions; `out` then holds ±∞
+    /// there).
+    pub fn mueller_f32_into(&self, batch: &GeometryBatch<'_>, out: &mut [[f32; 16]]) -> Result<()> {
+        check_len("out", out.len(), batch.len())?;
+        self.check(batch.len())?;
+        // The same bytes as an f64 output of half the length: stream beyond 8 MB.
+        let kernel = self.kernel.clone().streaming(out.len() >= 2 * STREAM_MIN);
+        let len = chunk_len(out.len());
+        let overflow = out
+            .par_chunks_mut(len)
+            .enumerate()
+            .map(|(c, chunk)| kernel.mueller_f32_into(batch, c * len, chunk))
+            .reduce(|| false, |a, b| a | b);
+        if overflow {
+            return Err(f32_overflow());
+        }
         Ok(())
     }
 

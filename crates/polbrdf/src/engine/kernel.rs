@@ -291,6 +291,22 @@ impl<'a> Kernel<'a> {
         self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
     }
 
+    /// As [`Kernel::mueller_into`], each entry computed in f64 and rounded to the nearest f32
+    /// when stored (docs/model.md §12, "Precision"). Returns whether some finite entry was
+    /// beyond f32's range (stored as ±∞).
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn mueller_f32_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        start: usize,
+        out: &mut [[f32; 16]],
+    ) -> bool {
+        let src = Computed(BatchSource::new(batch, start, out.len()));
+        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out)
+    }
+
     /// The scalar BRDF (sr⁻¹) and the DoLP for unpolarized input of elements
     /// `start .. start + brdf.len()` of `batch`.
     ///
@@ -455,20 +471,24 @@ impl<'a> Kernel<'a> {
         src: &G,
         index: IndexSource<'_>,
         out: &mut [O],
-    ) {
+    ) -> bool {
         if self.scalar_only {
+            let mut overflow = false;
             for (i, o) in out.iter_mut().enumerate() {
-                o.set(&src.reference(self, index, i).pbrdf.to_row_major());
+                let v = src.reference(self, index, i).pbrdf.to_row_major();
+                overflow |= O::write_block(std::slice::from_mut(o), &[v], false);
             }
-            return;
+            return overflow;
         }
         let mut job = MuellerJob::<G, O, N> {
             kernel: self,
             src,
             index,
             out,
+            overflow: false,
         };
         dispatch(self.level_for(N), &mut job);
+        job.overflow
     }
 
     fn run_brdf_dolp<G: Blocks, const N: usize, const AOLP: bool>(
@@ -860,12 +880,14 @@ trait MuellerOut: Sized {
     fn set(&mut self, v: &[f64; 16]);
 
     /// Copies a block of results out; `stream`: with non-temporal stores where possible (for
-    /// outputs much larger than the caches, which are then not read back soon).
+    /// outputs much larger than the caches, which are then not read back soon). Returns
+    /// whether a finite value became infinite (only a narrower format can overflow).
     #[inline(always)]
-    fn write_block(dst: &mut [Self], src: &[[f64; 16]], _stream: bool) {
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]], _stream: bool) -> bool {
         for (o, v) in dst.iter_mut().zip(src) {
             o.set(v);
         }
+        false
     }
 }
 
@@ -876,7 +898,7 @@ impl MuellerOut for [f64; 16] {
     }
 
     #[inline(always)]
-    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) {
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
         #[cfg(target_arch = "x86_64")]
         if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
             use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
@@ -887,10 +909,53 @@ impl MuellerOut for [f64; 16] {
                 // every even offset from it), and SSE2 is part of x86-64.
                 unsafe { _mm_stream_pd(d.add(i), _mm_loadu_pd(s.add(i))) };
             }
-            return;
+            return false;
         }
         let n = dst.len().min(src.len());
         dst[..n].copy_from_slice(&src[..n]);
+        false
+    }
+}
+
+/// Single precision: each entry rounded to the nearest f32 (`as f32`), which is what a caller
+/// converting f64 results would get, without the f64 array in memory.
+impl MuellerOut for [f32; 16] {
+    #[inline(always)]
+    fn set(&mut self, v: &[f64; 16]) {
+        *self = v.map(|x| x as f32);
+    }
+
+    #[inline(always)]
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
+        let n = dst.len().min(src.len());
+        // Flat, so that the conversion is one vectorized loop.
+        let (dst, src) = (dst[..n].as_flattened_mut(), src[..n].as_flattened());
+        let mut overflow = false;
+        #[cfg(target_arch = "x86_64")]
+        if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
+            use std::arch::x86_64::{_mm_loadu_ps, _mm_stream_ps};
+            let mut staged = [0.0f32; 16 * BLOCK];
+            for (d, s) in dst.chunks_mut(16 * BLOCK).zip(src.chunks(16 * BLOCK)) {
+                for (o, x) in staged.iter_mut().zip(s) {
+                    *o = *x as f32;
+                    overflow |= o.is_infinite() & x.is_finite();
+                }
+                for i in (0..d.len()).step_by(4) {
+                    // SAFETY: `d` and `staged` hold at least `d.len()` f32 (a multiple of 16),
+                    // `d` is 16-byte aligned (so is every offset of 4 f32 from it), and SSE is
+                    // part of x86-64.
+                    unsafe {
+                        _mm_stream_ps(d.as_mut_ptr().add(i), _mm_loadu_ps(staged.as_ptr().add(i)))
+                    };
+                }
+            }
+            return overflow;
+        }
+        for (o, x) in dst.iter_mut().zip(src) {
+            *o = *x as f32;
+            overflow |= o.is_infinite() & x.is_finite();
+        }
+        overflow
     }
 }
 
@@ -939,6 +1004,8 @@ struct MuellerJob<'k, 'a, 's, 'o, G, O, const N: usize> {
     src: &'s G,
     index: IndexSource<'k>,
     out: &'o mut [O],
+    /// A finite entry beyond the output format's range.
+    overflow: bool,
 }
 
 impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, O, N> {
@@ -970,7 +1037,7 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
                         .to_row_major();
                 }
             }
-            O::write_block(dst, &staged, k.stream);
+            self.overflow |= O::write_block(dst, &staged, k.stream);
         }
         if k.stream {
             store_fence();

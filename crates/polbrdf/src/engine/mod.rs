@@ -35,6 +35,6 @@ pub(crate) mod block;
 pub mod kernel;
 pub mod simd;
 
-pub use batch::Engine;
+pub use batch::{Engine, Precision};
 pub use kernel::{IndexColumns, Kernel, Prepared, BLOCK};
 pub use simd::{simd_level, SimdLevel};

@@ -1,0 +1,218 @@
+"""polbrdf against Mitsuba 3 on the same random geometries (run by scripts/bench-peers).
+
+    python scripts/bench_peers.py [--count N] [--repeats R] [--cli PATH] [--check-only]
+
+1. The physics check: where the two models overlap — the specular (facet) term of a conductor —
+   the DoLP for unpolarized light must agree. Mitsuba's `roughconductor` (Beckmann) is
+   D·G·F/(4 cosθ) with F the conductor Fresnel Mueller matrix at the half-angle; polbrdf's
+   specular term with ρ_D = ρ_V = 0 and shadowing off is g·R(η_r)·M_d·R(−η_i) (docs/model.md
+   §4–6), with M_d the same Fresnel matrix at the same half-angle β. The scalar factors (D, G,
+   SO, 1/cos) do not change the DoLP, and the DoLP of a Stokes vector does not depend on the
+   frame's orientation (a rotation of the (S1, S2) pair), so Mitsuba's Stokes frames need no
+   conversion to psps for this check (docs/model.md §2). Mitsuba computes in float32: the
+   agreement asked is 1e-4 absolute.
+2. Throughput: Mitsuba's `llvm_ad_mono_polarized` `bsdf.eval` (the full Mueller matrix × cosθo,
+   float32) over N geometries in one launch (`dr.eval`), the JIT compiled and warm, against
+   polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays) on the
+   same geometries, both on every core; and `polbrdf bench` (the Rust batch API) when --cli is
+   given. Medians of R repeats; prints the ratios.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import polbrdf
+
+# A conductor (aluminium near 0.6 µm) with a Beckmann lobe.
+N_INDEX, K_INDEX = 1.2, 7.0
+ALPHA = 0.2  # Beckmann roughness: RMS slope
+SIGMA_DEG = float(np.degrees(np.arctan(ALPHA)))  # polbrdf's σ of the same lobe width
+
+
+def cpu() -> tuple[str, str]:
+    """CPU model and SIMD level (the best of avx512f / avx2+fma / baseline), from /proc/cpuinfo."""
+    model, flags = platform.processor() or "unknown CPU", set()
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name") and model in ("", "unknown CPU", "x86_64"):
+                    model = line.split(":", 1)[1].strip()
+                if line.startswith("flags"):
+                    flags = set(line.split(":", 1)[1].split())
+    except OSError:
+        pass
+    if "avx512f" in flags:
+        simd = "AVX-512"
+    elif {"avx2", "fma"} <= flags:
+        simd = "AVX2+FMA"
+    else:
+        simd = "baseline"
+    return model, simd
+
+
+def geometries(n: int, seed: int = 2024) -> tuple[np.ndarray, ...]:
+    """θ uniform in [0°, 89.9°], φ uniform in [0°, 360°) (radians), as `polbrdf bench`."""
+    rng = np.random.default_rng(seed)
+    ti, tr = np.radians(rng.uniform(0.0, 89.9, (2, n)))
+    pi, pr = np.radians(rng.uniform(0.0, 360.0, (2, n)))
+    return ti, pi, tr, pr
+
+
+def medians_s(repeats: int, cases: list) -> list[float]:
+    """Median wall time of each callable, after one warm-up call each; the repeats interleaved
+    (one call of each case per round), so that a change of machine load affects all alike."""
+    for f in cases:
+        f()
+    times: list[list[float]] = [[] for _ in cases]
+    for _ in range(repeats):
+        for f, t in zip(cases, times):
+            t0 = time.perf_counter()
+            f()
+            t.append(time.perf_counter() - t0)
+    return [float(np.median(t)) for t in times]
+
+
+class Mitsuba:
+    """Mitsuba 3's polarized rough conductor on fixed geometries (LLVM backend)."""
+
+    def __init__(self, ti, pi, tr, pr):
+        import drjit as dr
+        import mitsuba as mi
+
+        mi.set_variant("llvm_ad_mono_polarized")
+        self.dr, self.mi = dr, mi
+        self.version = mi.__version__
+        self.bsdf = mi.load_dict(
+            {
+                "type": "roughconductor",
+                "distribution": "beckmann",
+                "alpha": ALPHA,
+                "eta": N_INDEX,
+                "k": K_INDEX,
+            }
+        )
+
+        def vec(t, p):
+            return mi.Vector3f(
+                (np.sin(t) * np.cos(p)).astype(np.float32),
+                (np.sin(t) * np.sin(p)).astype(np.float32),
+                np.cos(t).astype(np.float32),
+            )
+
+        n = len(ti)
+        si = dr.zeros(mi.SurfaceInteraction3f, n)
+        # Mitsuba's si.wi points to the sensor (polbrdf's detector, θr), wo to the light
+        # (polbrdf's source, θi); eval returns the Mueller matrix from wo's beam to wi's.
+        si.wi = vec(tr, pr)
+        si.sh_frame = mi.Frame3f(mi.Normal3f(0, 0, 1))
+        si.n = mi.Normal3f(0, 0, 1)
+        self.si, self.wo, self.ctx = si, vec(ti, pi), mi.BSDFContext()
+        dr.eval(self.si, self.wo)
+
+    def eval(self):
+        v = self.bsdf.eval(self.ctx, self.si, self.wo)
+        self.dr.eval(v)
+        self.dr.sync_thread()
+        return v
+
+    def mueller(self) -> np.ndarray:
+        """(n, 4, 4) Mueller matrices × cosθo."""
+        m = np.array(self.eval())  # (4, 4, 1, n)
+        return np.moveaxis(m[:, :, 0, :], -1, 0).astype(np.float64)
+
+
+def dolp_of_first_column(m: np.ndarray) -> np.ndarray:
+    i = m[..., 0, 0]
+    lin = np.hypot(m[..., 1, 0], m[..., 2, 0])
+    return np.divide(lin, i, out=np.zeros_like(i), where=i > 0)
+
+
+def physics_check(n: int = 20000) -> float:
+    """Largest |DoLP_mitsuba − DoLP_polbrdf| over n random geometries where both are defined
+    (F00 > 0 and not below Mitsuba's float32 resolution)."""
+    ti, pi, tr, pr = geometries(n, seed=7)
+    mit = Mitsuba(ti, pi, tr, pr)
+    m = mit.mueller()
+    mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
+    d_pol = polbrdf.dolp(mat, ti, pi, tr, pr, degrees=False)
+    d_mit = dolp_of_first_column(m)
+    ok = (m[:, 0, 0] > 1e-30) & np.isfinite(m[:, 0, 0])
+    if ok.sum() < n // 2:
+        raise SystemExit(f"physics check: only {ok.sum()} of {n} Mitsuba values usable")
+    return float(np.max(np.abs(d_mit[ok] - d_pol[ok])))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--count", type=int, default=2_000_000)
+    ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--cli", help="the polbrdf binary, for `polbrdf bench` (the Rust batch API)")
+    ap.add_argument("--check-only", action="store_true", help="only the physics check")
+    args = ap.parse_args()
+
+    model, simd = cpu()
+    print(f"CPU: {model}, {os.cpu_count()} logical CPUs, {simd}; load average {os.getloadavg()}")
+    dev = physics_check()
+    print(f"physics: DoLP of a Beckmann conductor (n={N_INDEX}, k={K_INDEX}), Mitsuba vs polbrdf "
+          f"(specular term, shadowing off): max |ΔDoLP| = {dev:.2e} over 20000 geometries")
+    if dev > 1e-4:
+        raise SystemExit("physics check FAILED: the DoLPs differ by more than 1e-4")
+    if args.check_only:
+        return
+
+    n, r = args.count, args.repeats
+    ti, pi, tr, pr = geometries(n)
+    mit = Mitsuba(ti, pi, tr, pr)
+    mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
+    out64 = np.empty((n, 4, 4))
+    out32 = np.empty((n, 4, 4), dtype=np.float32)
+    cases = [
+        (f"Mitsuba {mit.version} llvm_ad_mono_polarized roughconductor eval (float32)", mit.eval),
+        (
+            "polbrdf.mueller float64, out= reused",
+            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out64),
+        ),
+        (
+            "polbrdf.mueller float64, new array",
+            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False),
+        ),
+        (
+            "polbrdf.mueller float32 (precision), out= reused",
+            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out32),
+        ),
+    ]
+    times = medians_s(r, [f for _, f in cases])
+    t_mit = times[0]
+    print(f"\n{n} random geometries, medians of {r} interleaved repeats, all cores; "
+          f"M evaluations/s and the ratio to Mitsuba:")
+    for (name, _), t in zip(cases, times):
+        print(f"  {name:<72} {n / t / 1e6:7.1f} M/s  {t_mit / t:5.2f}x")
+    if args.cli:
+        cmd = [args.cli, "bench", "--json", "--count", str(min(n, 1_000_000)),
+               "--repeats", str(r)]
+        doc = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+        best = doc["results"][-1]
+        bw = doc.get("write_bandwidth", {})
+        print(f"\n`polbrdf bench` (the Rust batch API, `paint`, {doc['count']} geometries, "
+              f"{best['threads']} threads, SIMD level {doc['cpu']['simd']}; run after the above):")
+        print(f"  full Mueller float64 {best['mueller_evals_per_s'] / 1e6:7.1f} M/s  "
+              f"float32 {best.get('mueller_f32_evals_per_s', float('nan')) / 1e6:7.1f} M/s  "
+              f"BRDF+DoLP {best['brdf_dolp_evals_per_s'] / 1e6:7.1f} M/s")
+        if bw:
+            print(f"  memory write bandwidth {bw['bytes_per_s'] / 1e9:.1f} GB/s: full-Mueller "
+                  f"roofline {bw['full_mueller_roofline_evals_per_s'] / 1e6:.0f} M/s (float64), "
+                  f"{bw['full_mueller_f32_roofline_evals_per_s'] / 1e6:.0f} M/s (float32)")
+    print(f"\nload average after the run: {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
