@@ -815,7 +815,7 @@ pub struct NpyWriter<W: Write> {
 }
 
 /// Checks column names for a structured dtype: non-empty and distinct.
-fn check_columns<S: AsRef<str>>(columns: &[S]) -> std::io::Result<Vec<String>> {
+pub(crate) fn check_columns<S: AsRef<str>>(columns: &[S]) -> std::io::Result<Vec<String>> {
     let invalid = |m: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, m);
     if columns.is_empty() {
         return Err(invalid("a .npy table needs at least one column".into()));
@@ -860,6 +860,16 @@ impl<W: Write> NpyWriter<W> {
     /// The column names.
     pub fn columns(&self) -> &[String] {
         &self.columns
+    }
+
+    /// The underlying writer.
+    pub fn get_ref(&self) -> &W {
+        &self.w
+    }
+
+    /// True for a table started with [`new_patchable`](Self::new_patchable).
+    pub fn is_patchable(&self) -> bool {
+        self.declared.is_none()
     }
 
     /// Rows written so far.
