@@ -637,12 +637,14 @@ pub fn fmt_f64(v: f64) -> String {
     String::from_utf8(b).expect("ASCII")
 }
 
-/// Appends [`fmt_f64`]'s text of `v` to `out`, without allocating. The digits are `ryu`'s
-/// (shortest round-trip, as Rust's `{:?}`); outside `[1e-4, 1e16)`, where the two notations
-/// differ, Rust's is used.
+/// Appends [`fmt_f64`]'s text of `v` to `out`, without allocating: shortest round-trip digits
+/// by `ryu` in the notation of Rust's `{:?}` (Rust's own formatting is used in `[1e-5, 1e-4)`
+/// and from 1e16 on, where ryu's notation differs). Where two last digits are equally short and
+/// both round-trip, ryu's choice may differ from Rust's: the value read back is the same.
 pub fn fmt_f64_into(v: f64, out: &mut Vec<u8>) {
     let v = v + 0.0;
-    if v == 0.0 || (1e-4..1e16).contains(&v.abs()) {
+    let a = v.abs();
+    if !(1e-5..1e-4).contains(&a) && a < 1e16 {
         let mut b = ryu::Buffer::new();
         out.extend_from_slice(b.format(v).as_bytes());
     } else {
@@ -706,4 +708,58 @@ pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> 
         t.fields(fields);
     }
     Ok(t.into_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn fast_float_text_round_trips_in_rusts_notation() {
+        // Every magnitude from subnormals to 1e300, with awkward mantissas.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for e in -320..300 {
+            for _ in 0..40 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let m = 1.0 + (x >> 11) as f64 / (1u64 << 53) as f64;
+                for v in [
+                    m * 10f64.powi(e),
+                    -m * 10f64.powi(e),
+                    10f64.powi(e),
+                    5.0 * 10f64.powi(e),
+                ] {
+                    same_value_and_notation(v);
+                }
+            }
+        }
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1e-4,
+            1e-5,
+            9.99e-5,
+            1e16,
+            9.999e15,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+        ] {
+            same_value_and_notation(v);
+        }
+    }
+
+    fn same_value_and_notation(v: f64) {
+        let mut b = Vec::new();
+        super::fmt_f64_into(v, &mut b);
+        let ours = String::from_utf8(b).unwrap();
+        let rust = format!("{:?}", v + 0.0);
+        assert_eq!(
+            ours.parse::<f64>().unwrap().to_bits(),
+            (v + 0.0).to_bits(),
+            "{ours}"
+        );
+        assert_eq!(ours.len(), rust.len(), "{ours} vs {rust}");
+        assert_eq!(ours.contains('e'), rust.contains('e'), "{ours} vs {rust}");
+    }
 }

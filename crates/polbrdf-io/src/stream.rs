@@ -282,14 +282,16 @@ impl GeometryReader {
                     lines.push(rdr.get_mut().row_line(start));
                     records.push(rec);
                 }
-                let mut geometries = Vec::with_capacity(records.len());
-                for (rec, &line) in records.iter().zip(&lines) {
-                    geometries.push(row_geometry(
-                        &path,
-                        line,
-                        [&rec[a], &rec[b], &rec[c], &rec[d]],
-                    )?);
-                }
+                // Parsed in parallel; the first bad row (in file order) is the error.
+                use rayon::prelude::*;
+                let parsed: Vec<Result<Geometry>> = records
+                    .par_iter()
+                    .zip(&lines)
+                    .map(|(rec, &line)| {
+                        row_geometry(&path, line, [&rec[a], &rec[b], &rec[c], &rec[d]])
+                    })
+                    .collect();
+                let geometries = parsed.into_iter().collect::<Result<Vec<Geometry>>>()?;
                 let wavelengths = match self.wavelength {
                     Some(w) => Some(
                         records
@@ -397,7 +399,6 @@ pub fn result_values(f: &Mueller) -> [f64; 19] {
 enum Sink {
     Csv {
         out: Output,
-        line: Vec<u8>,
     },
     /// Into the output directly (known row count, or a seekable output patched at the end).
     Npy(NpyWriter<Output>),
@@ -468,7 +469,7 @@ impl ResultWriter {
                     w.flush().map_err(|e| out.error(e))?;
                 }
                 out.write_all(&line).map_err(|e| out.error(e))?;
-                Sink::Csv { out, line }
+                Sink::Csv { out }
             }
             Format::Npy => match rows {
                 Some(n) => {
@@ -533,31 +534,23 @@ impl ResultWriter {
         };
         let cols = self.headers.len();
         match &mut self.sink {
-            Sink::Csv { out, line } => {
-                for (k, f) in pbrdf.iter().enumerate() {
-                    line.clear();
-                    match &chunk.columns {
-                        Passthrough::Text(recs) => {
-                            for field in &recs[k] {
-                                push_csv_field(line, field);
-                                line.push(b',');
-                            }
+            Sink::Csv { out } => {
+                // Rows formatted in parallel, in blocks, written in order.
+                use rayon::prelude::*;
+                const BLOCK: usize = 2048;
+                let blocks: Vec<Vec<u8>> = pbrdf
+                    .par_chunks(BLOCK)
+                    .enumerate()
+                    .map(|(b, fs)| {
+                        let mut buf = Vec::with_capacity(fs.len() * 400);
+                        for (j, f) in fs.iter().enumerate() {
+                            csv_row(&mut buf, &chunk.columns, b * BLOCK + j, cols, f);
                         }
-                        Passthrough::Numbers(v) => {
-                            for x in &v[k * cols..(k + 1) * cols] {
-                                fmt_f64_into(*x, line);
-                                line.push(b',');
-                            }
-                        }
-                    }
-                    for (i, x) in result_values(f).iter().enumerate() {
-                        if i > 0 {
-                            line.push(b',');
-                        }
-                        fmt_f64_into(*x, line);
-                    }
-                    line.push(b'\n');
-                    out.write_all(line).map_err(werr)?;
+                        buf
+                    })
+                    .collect();
+                for block in &blocks {
+                    out.write_all(block).map_err(werr)?;
                 }
                 Ok(())
             }
@@ -603,6 +596,31 @@ impl ResultWriter {
             }
         }
     }
+}
+
+/// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
+fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &Mueller) {
+    match columns {
+        Passthrough::Text(recs) => {
+            for field in &recs[k] {
+                push_csv_field(line, field);
+                line.push(b',');
+            }
+        }
+        Passthrough::Numbers(v) => {
+            for x in &v[k * cols..(k + 1) * cols] {
+                fmt_f64_into(*x, line);
+                line.push(b',');
+            }
+        }
+    }
+    for (i, x) in result_values(f).iter().enumerate() {
+        if i > 0 {
+            line.push(b',');
+        }
+        fmt_f64_into(*x, line);
+    }
+    line.push(b'\n');
 }
 
 /// A CSV field, quoted where CSV needs it (as the csv crate's writer quotes).
