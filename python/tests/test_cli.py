@@ -117,3 +117,26 @@ def test_material_file_agrees_with_cli(mat: polbrdf.Material, tmp_path: Path) ->
     assert polbrdf.Material.from_toml(path) == mat
     g = geometries()
     compare(mat, run_cli(str(path), g, tmp_path), g)
+
+
+def test_eval_npy_matches_python_and_numpy_reads_it(tmp_path: Path) -> None:
+    """`eval --output x.npy` is a structured array numpy loads, equal to the Python package's
+    values, and a structured array saved by numpy is an `eval` input."""
+    g = geometries()[:50]
+    names = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"]
+    table = np.rec.fromarrays(g.T, names=names)
+    src = tmp_path / "g.npy"
+    np.save(src, table)
+    out = tmp_path / "out.npy"
+    assert CLI is not None
+    subprocess.run(
+        [str(CLI), "eval", "--material", "paint", "--input", str(src), "--output", str(out)],
+        check=True,
+    )
+    a = np.load(out)
+    assert a.dtype.names[:4] == tuple(names)
+    assert a.shape == (50,)
+    f = polbrdf.mueller(polbrdf.Material.preset("paint"), *g.T)
+    m = np.stack([a[f"m{k // 4}{k % 4}"] for k in range(16)], axis=-1).reshape(-1, 4, 4)
+    np.testing.assert_allclose(m, f, rtol=1e-12, atol=1e-300)
+    np.testing.assert_array_equal(a["brdf"], a["m00"])

@@ -32,6 +32,10 @@ pub struct Args {
 
 /// Runs `polbrdf albedo`.
 pub fn run(args: &Args) -> Result<(), CliError> {
+    if let Some(out) = &args.output {
+        let inputs = [std::path::Path::new(&args.material)];
+        polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
+    }
     let angles: Vec<f64> = if args.theta_i_deg.is_empty() {
         (0..18).map(|k| 5.0 * f64::from(k)).collect()
     } else {

@@ -169,7 +169,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     polbrdf::Spectrum::Band(b, _) => b.range().1,
                 };
                 if t.is_none() && longest >= 3.0 {
-                    eprintln!(
+                    crate::note!(
                         "polbrdf contrast: note: {}: [{table}] has no temperature_k, so the \
                          {table} emits nothing (it only reflects the sky)",
                         path.display()
@@ -177,7 +177,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 }
             }
             if scene.thermal.surface_temperature_k.is_some() {
-                eprintln!(
+                crate::note!(
                     "polbrdf contrast: note: {}: [surface] is for `polbrdf radiance`; contrast \
                      uses the temperatures of [target] and [background]",
                     path.display()

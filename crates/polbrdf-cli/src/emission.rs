@@ -55,6 +55,10 @@ pub struct Args {
 
 /// Runs `polbrdf emission`.
 pub fn run(args: &Args) -> Result<(), CliError> {
+    if let Some(out) = &args.output {
+        let inputs = [std::path::Path::new(&args.material)];
+        polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
+    }
     let angles: Vec<f64> = if args.theta_deg.is_empty() {
         (0..90).map(f64::from).collect()
     } else {
@@ -136,12 +140,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     write_output(args.output.as_deref(), &table.into_bytes())?;
     let what = format!("{name}{}", describe(&spectrum));
     if invalid.is_empty() {
-        eprintln!(
+        crate::note!(
             "polbrdf emission: {what}: {} view angle(s), every emissivity in [0, 1]",
             angles.len()
         );
     } else {
-        eprintln!(
+        crate::note!(
             "polbrdf emission: {what}: WARNING: at {} of {} view angle(s) ({}°) an emissivity \
              leaves [0, 1] — the parameter set reflects more than it receives there \
              (valid = false; values reported, not clipped)",

@@ -22,6 +22,18 @@ pub enum CliError {
 }
 
 impl CliError {
+    /// A write to a closed standard output (or pipe): ends the command quietly with 141.
+    pub fn is_broken_pipe(&self) -> bool {
+        let io = match self {
+            CliError::Output(e) => Some(e),
+            CliError::Io(polbrdf_io::Error::Write { source, path }) if path.as_os_str() == "-" => {
+                Some(source)
+            }
+            _ => None,
+        };
+        io.is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    }
+
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Io(e) if e.is_data_error() => 3,

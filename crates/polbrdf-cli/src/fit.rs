@@ -24,6 +24,11 @@ pub struct Args<'a> {
 
 /// Runs `polbrdf fit`.
 pub fn run(args: &Args<'_>) -> Result<(), CliError> {
+    let outputs: Vec<&Path> = [args.output, args.material_out, args.plot, args.index_out]
+        .into_iter()
+        .flatten()
+        .collect();
+    polbrdf_io::check_distinct(&[args.data, Path::new(args.material)], &outputs)?;
     let base = polbrdf_io::load_material(args.material)?;
     let free = Param::parse_list(args.free)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
@@ -54,8 +59,11 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
 
     let json = serde_json::to_string_pretty(&to_json(&result, args.data))
         .expect("JSON of finite and null values");
-    eprint!("{}", summary(&result, args.data, data.len()));
-    write_output(args.output, (json + "\n").as_bytes())?;
+    // Files first, standard output next, the summary (standard error) last: a closed pipe
+    // never costs a file, and a file that failed is never hidden by a summary.
+    if let Some(path) = args.output {
+        polbrdf_io::write_atomic(path, (json.clone() + "\n").as_bytes())?;
+    }
     if let Some(path) = args.plot {
         let fig = residual_figure(&result, &data);
         let bytes = match path.extension().and_then(|e| e.to_str()) {
@@ -73,6 +81,10 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         ));
         polbrdf_io::write_atomic(path, polbrdf_io::material_to_toml(&spec).as_bytes())?;
     }
+    if args.output.is_none() {
+        write_output(None, (json + "\n").as_bytes())?;
+    }
+    crate::output::note(&summary(&result, args.data, data.len()));
     if !result.converged {
         return Err(CliError::NotConverged(result.message));
     }
@@ -376,14 +388,16 @@ fn run_per_wavelength(
             }
         }
     }
-    eprint!("{s}");
     let doc = json!({
         "per_wavelength": entries,
         "parameter_order": free.iter().map(|p| p.name()).collect::<Vec<_>>(),
         "data": args.data.display().to_string(),
     });
     let json = serde_json::to_string_pretty(&doc).expect("JSON of finite and null values");
-    write_output(args.output, (json + "\n").as_bytes())?;
+    // Files first, then standard output, then the summary (as `run`).
+    if let Some(path) = args.output {
+        polbrdf_io::write_atomic(path, (json.clone() + "\n").as_bytes())?;
+    }
     if let Some(path) = args.index_out {
         let n_at = free.iter().position(|p| *p == Param::N).ok_or_else(|| {
             CliError::Invalid("--index-out needs `n` among the free parameters".into())
@@ -404,6 +418,10 @@ fn run_per_wavelength(
         }
         polbrdf_io::write_atomic(path, text.as_bytes())?;
     }
+    if args.output.is_none() {
+        write_output(None, (json + "\n").as_bytes())?;
+    }
+    crate::output::note(&s);
     if failed.is_empty() {
         Ok(())
     } else {

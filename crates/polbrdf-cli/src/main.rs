@@ -161,16 +161,22 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // SIGINT/SIGTERM/SIGHUP remove this run's named temporaries (before any thread starts).
+    polbrdf_io::install_signal_cleanup();
     // A panic is a bug: say so, and exit with the documented code 1 (not Rust's 101).
     // Except a closed standard output (`polbrdf … | head`): `print!` panics on a broken pipe,
-    // and a reader that stopped reading is no bug; exit quietly, as Unix tools do (141 =
-    // 128 + SIGPIPE).
+    // and a reader that stopped reading is no bug: exit quietly with 141 (128 + SIGPIPE), as
+    // every command does for a closed standard output. Files are written before standard
+    // output, so they are complete by then. The hook never prints with a panicking macro
+    // (a broken standard error would abort).
     std::panic::set_hook(Box::new(|info| {
         let message = info.to_string();
-        if message.contains("failed printing to stdout") && message.contains("Broken pipe") {
+        if message.contains("failed printing to stdout") {
             std::process::exit(141);
         }
-        eprintln!("polbrdf: internal error (a bug, please report it): {info}");
+        output::note(&format!(
+            "polbrdf: internal error (a bug, please report it): {info}\n"
+        ));
         std::process::exit(1);
     }));
     let cli = match Cli::try_parse() {
@@ -182,9 +188,9 @@ fn main() -> ExitCode {
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(CliError::Output(e)) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) if e.is_broken_pipe() => ExitCode::from(141),
         Err(e) => {
-            eprintln!("polbrdf: error: {e}");
+            output::note(&format!("polbrdf: error: {e}\n"));
             ExitCode::from(e.exit_code())
         }
     }

@@ -1,4 +1,5 @@
-//! Where results go: a file written atomically, or standard output.
+//! Where results go: an output target of `polbrdf_io` (a regular file written atomically, a
+//! device, FIFO or `/dev/fd/N` written directly, `-` for standard output), or standard output.
 
 use crate::error::CliError;
 use std::io::Write;
@@ -15,4 +16,19 @@ pub fn write_output(output: Option<&Path>, bytes: &[u8]) -> Result<(), CliError>
                 .map_err(CliError::Output)
         }
     }
+}
+
+/// Prints a note (a summary, a progress line) on standard error, ignoring a closed or broken
+/// standard error: a note is never worth a lost result or an abort.
+pub fn note(text: &str) {
+    let mut err = std::io::stderr().lock();
+    let _ = err.write_all(text.as_bytes()).and_then(|()| err.flush());
+}
+
+/// `eprintln!` that never panics: a line on standard error through [`note`].
+#[macro_export]
+macro_rules! note {
+    ($($arg:tt)*) => {
+        $crate::output::note(&format!("{}\n", format_args!($($arg)*)))
+    };
 }

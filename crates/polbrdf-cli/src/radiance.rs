@@ -88,6 +88,11 @@ pub(crate) fn observer_error(
 
 /// Runs `polbrdf radiance`.
 pub fn run(args: &Args) -> Result<(), CliError> {
+    if let Some(out) = &args.output {
+        let mut inputs = vec![std::path::Path::new(&args.material), args.scene.as_path()];
+        inputs.extend(args.input.as_deref());
+        polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
+    }
     let views: Vec<(f64, f64)> = match &args.input {
         Some(path) => polbrdf_io::read_views_csv(path)?,
         None => {
@@ -150,7 +155,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         polbrdf::Spectrum::Wavelength(_) => "W·m⁻²·sr⁻¹·µm⁻¹",
         polbrdf::Spectrum::Band(..) => "W·m⁻²·sr⁻¹ (band-integrated)",
     };
-    eprintln!(
+    crate::note!(
         "polbrdf radiance: {name}{} in {}: {} view(s); Stokes radiance in {unit}",
         describe(&Some(scene.spectrum.clone())),
         scene.path.display(),

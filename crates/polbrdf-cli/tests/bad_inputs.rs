@@ -433,6 +433,19 @@ fn table() -> Vec<Case> {
         contrast_scene("scene and sun", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--sun-zenith-deg", "30"], 2, &["--scene", "--sun-zenith-deg"]),
         contrast_scene("scene and wavelength option", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--wavelength-um", "10"], 2, &["--scene", "--wavelength-um"]),
         contrast_scene("scene contrast (valid)", &format!("wavelength_um = 10\n{OBJECTS}[sky]\nmodel = \"thermal\"\ntemperature_k = 250\n"), vec![], &[], 0, &[]),
+        // Outputs (issue 18): an output that is an input or another output, a directory, .npy
+        // (read-only, linked, device and FIFO outputs: tests/outputs.rs).
+        case("eval: output is the input", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/g.csv"], 3, &["g.csv", "same file as the input"]),
+        case("eval: output is the material", vec![("g.csv", t(GEO)), ("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/m.toml"], 3, &["m.toml", "same file as the input"]),
+        case("eval: npy output of a text column", vec![("g.csv", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,name\n30,0,30,180,x\n"))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/out.npy"], 3, &["g.csv:2", "`name`", "numbers only"]),
+        case("eval: npy input without names", vec![("g.npy", b"\x93NUMPY\x01\x00\x46\x00{'descr': '<f8', 'fortran_order': False, 'shape': (0, 4), }          \n".to_vec())], &["eval", "--material", "paint", "--input", "{d}/g.npy", "--output", "{d}/out.csv"], 3, &["g.npy", "named columns"]),
+        case("eval: output a directory", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}"], 3, &["is a directory"]),
+        case("fit: output is the data", vec![("d.csv", t(MEAS))], &["fit", "--material", "paint", "--data", "{d}/d.csv", "--free", "n", "--output", "{d}/d.csv"], 3, &["d.csv", "same file as the input"]),
+        case("fit: plot is the data", vec![("d.csv", t(MEAS))], &["fit", "--material", "paint", "--data", "{d}/d.csv", "--free", "n", "--plot", "{d}/d.csv"], 3, &["same file as the input"]),
+        case("fit: two outputs one file", vec![("d.csv", t(MEAS))], &["fit", "--material", "paint", "--data", "{d}/d.csv", "--free", "n", "--output", "{d}/out.json", "--material-out", "{d}/out.json"], 3, &["same file as the output"]),
+        case("albedo: output is the material", vec![("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["albedo", "--material", "{d}/m.toml", "--output", "{d}/m.toml"], 3, &["same file as the input"]),
+        case("emission: output is the material", vec![("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["emission", "--material", "{d}/m.toml", "--output", "{d}/m.toml"], 3, &["same file as the input"]),
+        case("radiance: output is the scene", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/s.toml"], 3, &["same file as the input"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),

@@ -138,7 +138,11 @@ fn writes_maps_csv_and_best_json_that_agree() {
     let mut want: Vec<String> = FIGURES
         .iter()
         .flat_map(|f| [format!("{f}.png"), format!("{f}.svg")])
-        .chain(["contrast.csv".into(), "best.json".into()])
+        .chain([
+            "contrast.csv".into(),
+            "best.json".into(),
+            "_COMPLETE".into(),
+        ])
         .collect();
     want.sort();
     assert_eq!(names, want, "exactly these files, no temporaries");

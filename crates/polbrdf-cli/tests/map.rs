@@ -31,6 +31,7 @@ fn map_writes_csv_and_maps_of_the_model() {
     assert_eq!(
         names,
         [
+            "_COMPLETE",
             "aolp.png",
             "aolp.svg",
             "brdf.png",
@@ -42,6 +43,10 @@ fn map_writes_csv_and_maps_of_the_model() {
             "overview.svg"
         ]
     );
+    // The set's completion marker lists the set.
+    let marker = std::fs::read_to_string(out.join("_COMPLETE")).unwrap();
+    assert_eq!(marker.lines().count(), 9);
+    assert!(marker.lines().any(|l| l == "map.csv"));
     let t = Table::read(&out.join("map.csv"));
     assert_eq!(
         t.header,

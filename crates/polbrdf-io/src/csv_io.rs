@@ -110,6 +110,44 @@ fn parse_table(bytes: &[u8], path: &Path, required: &[&str]) -> Result<RawTable>
         .iter()
         .map(str::to_string)
         .collect();
+    let index = check_header(&headers, path, required)?;
+    let mut rows = Vec::new();
+    let mut lines = Vec::new();
+    // Count newlines incrementally: rows come in file order.
+    let (mut seen_byte, mut seen_line) = (0usize, 1usize);
+    for record in reader.records() {
+        let record = record.map_err(syntax)?;
+        let mut byte = record
+            .position()
+            .map_or(0, |p| p.byte() as usize)
+            .min(bytes.len());
+        // The recorded position can sit before skipped blank lines.
+        while byte < bytes.len() && matches!(bytes[byte], b'\n' | b'\r') {
+            byte += 1;
+        }
+        seen_line += bytes[seen_byte..byte]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        seen_byte = byte;
+        lines.push(seen_line);
+        rows.push(record.iter().map(str::to_string).collect());
+    }
+    Ok(RawTable {
+        headers,
+        rows,
+        lines,
+        index,
+    })
+}
+
+/// Checks a table's header: not empty, no column twice, every `required` column present;
+/// returns the index of each required column.
+pub(crate) fn check_header(
+    headers: &[String],
+    path: &Path,
+    required: &[&str],
+) -> Result<Vec<usize>> {
     if headers.is_empty() || headers.iter().all(String::is_empty) {
         return Err(Error::File {
             path: path.to_path_buf(),
@@ -143,38 +181,10 @@ fn parse_table(bytes: &[u8], path: &Path, required: &[&str]) -> Result<RawTable>
             ),
         });
     }
-    let index: Vec<usize> = required
+    Ok(required
         .iter()
         .map(|r| headers.iter().position(|h| h == r).expect("checked above"))
-        .collect();
-    let mut rows = Vec::new();
-    let mut lines = Vec::new();
-    // Count newlines incrementally: rows come in file order.
-    let (mut seen_byte, mut seen_line) = (0usize, 1usize);
-    for record in reader.records() {
-        let record = record.map_err(syntax)?;
-        let mut byte = record
-            .position()
-            .map_or(0, |p| p.byte() as usize)
-            .min(bytes.len());
-        // The recorded position can sit before skipped blank lines.
-        while byte < bytes.len() && matches!(bytes[byte], b'\n' | b'\r') {
-            byte += 1;
-        }
-        seen_line += bytes[seen_byte..byte]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count();
-        seen_byte = byte;
-        lines.push(seen_line);
-        rows.push(record.iter().map(str::to_string).collect());
-    }
-    Ok(RawTable {
-        headers,
-        rows,
-        lines,
-        index,
-    })
+        .collect())
 }
 
 /// Parses a number in a CSV field (surrounding whitespace allowed).
@@ -229,42 +239,15 @@ pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
     } = parse_table(bytes, path, &ANGLE_COLUMNS)?;
     let mut geometries = Vec::with_capacity(rows.len());
     for (row, &line) in rows.iter().zip(&lines) {
-        let mut deg = [0.0; 4];
-        for (k, d) in deg.iter_mut().enumerate() {
-            *d = parse_number(path, line, ANGLE_COLUMNS[k], &row[idx[k]])?;
-        }
-        let g = Geometry::from_degrees(deg[0], deg[1], deg[2], deg[3]).map_err(|e| {
-            let field = match &e {
-                polbrdf::Error::InvalidAngle { name, .. } => name.to_string(),
-                _ => "angles".to_string(),
-            };
-            Error::Field {
-                path: path.to_path_buf(),
-                line,
-                field,
-                message: e.to_string(),
-            }
-        })?;
-        geometries.push(g);
+        let fields = [0, 1, 2, 3].map(|k| row[idx[k]].as_str());
+        geometries.push(row_geometry(path, line, fields)?);
     }
     let wavelengths = match headers.iter().position(|h| h == WAVELENGTH_COLUMN) {
         None => None,
         Some(c) => Some(
             rows.iter()
                 .zip(&lines)
-                .map(|(row, &line)| {
-                    let v = parse_number(path, line, WAVELENGTH_COLUMN, &row[c])?;
-                    if v.is_finite() && v > 0.0 {
-                        Ok(v)
-                    } else {
-                        Err(Error::Field {
-                            path: path.to_path_buf(),
-                            line,
-                            field: WAVELENGTH_COLUMN.into(),
-                            message: format!("{v}: a wavelength must be finite and > 0 (µm)"),
-                        })
-                    }
-                })
+                .map(|(row, &line)| row_wavelength(path, line, &row[c]))
                 .collect::<Result<Vec<f64>>>()?,
         ),
     };
@@ -276,6 +259,55 @@ pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
         geometries,
         wavelengths,
     })
+}
+
+/// The geometry of a row from its four angle fields (in [`ANGLE_COLUMNS`] order, degrees).
+pub(crate) fn row_geometry(path: &Path, line: usize, fields: [&str; 4]) -> Result<Geometry> {
+    let mut deg = [0.0; 4];
+    for (k, d) in deg.iter_mut().enumerate() {
+        *d = parse_number(path, line, ANGLE_COLUMNS[k], fields[k])?;
+    }
+    geometry_of_degrees(path, line, deg)
+}
+
+/// The geometry of four angles in degrees ([`ANGLE_COLUMNS`] order) at a row's line; an
+/// invalid angle is an error naming its column.
+pub(crate) fn geometry_of_degrees(path: &Path, line: usize, deg: [f64; 4]) -> Result<Geometry> {
+    Geometry::from_degrees(deg[0], deg[1], deg[2], deg[3]).map_err(|e| {
+        let field = match &e {
+            polbrdf::Error::InvalidAngle { name, .. } => name.to_string(),
+            _ => "angles".to_string(),
+        };
+        Error::Field {
+            path: path.to_path_buf(),
+            line,
+            field,
+            message: e.to_string(),
+        }
+    })
+}
+
+/// A row's `wavelength_um` field: a number, finite and > 0 (µm).
+pub(crate) fn row_wavelength(path: &Path, line: usize, field: &str) -> Result<f64> {
+    check_wavelength(
+        path,
+        line,
+        parse_number(path, line, WAVELENGTH_COLUMN, field)?,
+    )
+}
+
+/// A wavelength (µm) at a row's line: finite and > 0.
+pub(crate) fn check_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Error::Field {
+            path: path.to_path_buf(),
+            line,
+            field: WAVELENGTH_COLUMN.into(),
+            message: format!("{v}: a wavelength must be finite and > 0 (µm)"),
+        })
+    }
 }
 
 /// The columns of a band file: the wavelength (µm) and the relative spectral response.
@@ -600,7 +632,25 @@ pub fn parse_views_csv(bytes: &[u8], path: &Path) -> Result<Vec<(f64, f64)>> {
 
 /// Shortest round-trip text of a finite `f64` (`-0.0` printed as `0.0`).
 pub fn fmt_f64(v: f64) -> String {
-    format!("{:?}", v + 0.0)
+    let mut b = Vec::with_capacity(24);
+    fmt_f64_into(v, &mut b);
+    String::from_utf8(b).expect("ASCII")
+}
+
+/// Appends [`fmt_f64`]'s text of `v` to `out`, without allocating: shortest round-trip digits
+/// by `ryu` in the notation of Rust's `{:?}` (Rust's own formatting is used in `[1e-5, 1e-4)`
+/// and from 1e16 on, where ryu's notation differs). Where two last digits are equally short and
+/// both round-trip, ryu's choice may differ from Rust's: the value read back is the same.
+pub fn fmt_f64_into(v: f64, out: &mut Vec<u8>) {
+    let v = v + 0.0;
+    let a = v.abs();
+    if !(1e-5..1e-4).contains(&a) && a < 1e16 {
+        let mut b = ryu::Buffer::new();
+        out.extend_from_slice(b.format(v).as_bytes());
+    } else {
+        use std::io::Write;
+        write!(out, "{v:?}").expect("writing to memory cannot fail");
+    }
 }
 
 /// The project's one CSV writer: a header, then rows of fields — numbers in shortest
@@ -653,15 +703,63 @@ pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> 
     }
     let mut t = CsvTable::new(table.headers.iter().chain(extra.iter()));
     for (row, f) in table.rows.iter().zip(pbrdf) {
-        // The reflected Stokes vector for unpolarized input, F·(1, 0, 0, 0): its DoLP and AoLP
-        // as the core defines them.
-        let s: Stokes = f.first_column();
         let mut fields: Vec<String> = row.clone();
-        fields.push(fmt_f64(f.m00()));
-        fields.push(fmt_f64(s.dolp()));
-        fields.push(fmt_f64(s.aolp().to_degrees()));
-        fields.extend(f.to_row_major().iter().map(|v| fmt_f64(*v)));
+        fields.extend(crate::stream::result_values(f).iter().map(|v| fmt_f64(*v)));
         t.fields(fields);
     }
     Ok(t.into_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn fast_float_text_round_trips_in_rusts_notation() {
+        // Every magnitude from subnormals to 1e300, with awkward mantissas.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for e in -320..300 {
+            for _ in 0..40 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let m = 1.0 + (x >> 11) as f64 / (1u64 << 53) as f64;
+                for v in [
+                    m * 10f64.powi(e),
+                    -m * 10f64.powi(e),
+                    10f64.powi(e),
+                    5.0 * 10f64.powi(e),
+                ] {
+                    same_value_and_notation(v);
+                }
+            }
+        }
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1e-4,
+            1e-5,
+            9.99e-5,
+            1e16,
+            9.999e15,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+        ] {
+            same_value_and_notation(v);
+        }
+    }
+
+    fn same_value_and_notation(v: f64) {
+        let mut b = Vec::new();
+        super::fmt_f64_into(v, &mut b);
+        let ours = String::from_utf8(b).unwrap();
+        let rust = format!("{:?}", v + 0.0);
+        assert_eq!(
+            ours.parse::<f64>().unwrap().to_bits(),
+            (v + 0.0).to_bits(),
+            "{ours}"
+        );
+        assert_eq!(ours.len(), rust.len(), "{ours} vs {rust}");
+        assert_eq!(ours.contains('e'), rust.contains('e'), "{ours} vs {rust}");
+    }
 }

@@ -10,8 +10,10 @@ pub mod error;
 pub mod library;
 pub mod material;
 pub mod measurements;
+pub mod npy;
 pub mod refractive;
 pub mod scene;
+pub mod stream;
 pub mod write;
 
 pub use csv_io::{
@@ -26,4 +28,6 @@ pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
 pub use scene::{parse_scene, read_scene, Scene, SceneObject};
-pub use write::{write_atomic, write_files};
+pub use write::{
+    check_distinct, install_signal_cleanup, write_atomic, write_files, Output, Target,
+};

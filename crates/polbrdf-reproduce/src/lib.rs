@@ -11,7 +11,8 @@
 //! | `fig5.{png,svg}`, `table1.csv` | our DoLP beside the paper's Table 1 | `roughness,theta_deg,dolp_model_pct,dolp_paper_model_pct,dolp_paper_lawrence_pct,diff_vs_paper_model_pct,diff_vs_paper_lawrence_pct` |
 //! | `report.md` | the figures, every parameter, and a verdict with numbers on each claim | |
 //!
-//! Every file is written atomically (temporary file in `out_dir`, then rename).
+//! The files are written as one set (`polbrdf_io::write_files`: staged, moved into place, the
+//! completion marker `_COMPLETE` last).
 //!
 //! What "roughness" means in Fig. 4 and Table 1 is a decision this crate has to make (the
 //! paper does not say, and in this model the specular DoLP does not depend on the facet
@@ -90,6 +91,8 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
         progress(stage, done, total);
     })?;
 
+    // The set of files, written together at the end (polbrdf_io::write_files).
+    let mut set: Vec<(String, Vec<u8>)> = Vec::new();
     let mut files = Vec::new();
     let mut step = |stage: &str, files: &mut Vec<PathBuf>, new: Vec<PathBuf>| {
         files.extend(new);
@@ -104,8 +107,8 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
             csv.row(&[*t, *tn, *f]);
         }
     }
-    let mut new = vec![write(dir, "fig2.csv", &csv.into_bytes())?];
-    new.extend(render(&figures::fig2(&a), dir, "fig2")?);
+    let mut new = vec![write(&mut set, dir, "fig2.csv", &csv.into_bytes())?];
+    new.extend(render(&mut set, &figures::fig2(&a), dir, "fig2")?);
     step("Fig. 2 written", &mut files, new);
 
     // Fig. 3
@@ -113,8 +116,8 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
     for &(t, d) in &a.fig3 {
         csv.row(&[t, d]);
     }
-    let mut new = vec![write(dir, "fig3.csv", &csv.into_bytes())?];
-    new.extend(render(&figures::fig3(&a), dir, "fig3")?);
+    let mut new = vec![write(&mut set, dir, "fig3.csv", &csv.into_bytes())?];
+    new.extend(render(&mut set, &figures::fig3(&a), dir, "fig3")?);
     step("Fig. 3 written", &mut files, new);
 
     // Fig. 4
@@ -124,8 +127,8 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
             csv.row(&[*t, *r, *d]);
         }
     }
-    let mut new = vec![write(dir, "fig4.csv", &csv.into_bytes())?];
-    new.extend(render(&figures::fig4(&a), dir, "fig4")?);
+    let mut new = vec![write(&mut set, dir, "fig4.csv", &csv.into_bytes())?];
+    new.extend(render(&mut set, &figures::fig4(&a), dir, "fig4")?);
     step("Fig. 4 written", &mut files, new);
 
     // Table 1 and Fig. 5
@@ -147,22 +150,24 @@ pub fn run(opts: &Options, progress: &mut dyn FnMut(&str, usize, usize)) -> Resu
             csv.row(&[*r, *t, ours, pm, pl, round6(ours - pm), round6(ours - pl)]);
         }
     }
-    let mut new = vec![write(dir, "table1.csv", &csv.into_bytes())?];
-    new.extend(render(&figures::fig5(&a), dir, "fig5")?);
+    let mut new = vec![write(&mut set, dir, "table1.csv", &csv.into_bytes())?];
+    new.extend(render(&mut set, &figures::fig5(&a), dir, "fig5")?);
     step("Table 1 and Fig. 5 written", &mut files, new);
 
     // Report
     let checks = report::checks(&a);
     let text = report::markdown(&a, &checks);
-    let new = vec![write(dir, "report.md", text.as_bytes())?];
+    let new = vec![write(&mut set, dir, "report.md", text.as_bytes())?];
     step("report written", &mut files, new);
 
+    output::write_set(dir, &set)?;
     Ok(Summary { files, checks })
 }
 
-/// Draws `fig` into `dir/stem.png` and `dir/stem.svg` (rendered in memory by `polbrdf_plot`,
-/// then each written atomically); returns both paths.
+/// Draws `fig` as `dir/stem.png` and `dir/stem.svg` (rendered in memory by `polbrdf_plot`)
+/// into the set; returns both paths.
 fn render(
+    set: &mut Vec<(String, Vec<u8>)>,
     fig: &polbrdf_plot::Figure,
     dir: &std::path::Path,
     stem: &str,
@@ -171,14 +176,19 @@ fn render(
         .map_err(|(name, e)| Error::from_plot(e, &dir.join(name)))?;
     files
         .iter()
-        .map(|(name, bytes)| write(dir, name, bytes))
+        .map(|(name, bytes)| write(set, dir, name, bytes))
         .collect()
 }
 
-fn write(dir: &std::path::Path, name: &str, bytes: &[u8]) -> Result<PathBuf, Error> {
-    let path = dir.join(name);
-    output::write_atomic(&path, bytes)?;
-    Ok(path)
+/// Adds a file to the set; returns its path-to-be.
+fn write(
+    set: &mut Vec<(String, Vec<u8>)>,
+    dir: &std::path::Path,
+    name: &str,
+    bytes: &[u8],
+) -> Result<PathBuf, Error> {
+    set.push((name.to_string(), bytes.to_vec()));
+    Ok(dir.join(name))
 }
 
 /// Rounds to 6 decimals (percentages in table1.csv).

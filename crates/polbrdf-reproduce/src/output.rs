@@ -44,13 +44,15 @@ impl Error {
     }
 }
 
-/// Writes `bytes` to `path` atomically (`polbrdf_io::write_atomic`).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    polbrdf_io::write_atomic(path, bytes).map_err(|e| Error::Io {
-        path: path.to_path_buf(),
-        source: match e {
-            polbrdf_io::Error::Write { source, .. } => source,
-            other => std::io::Error::other(other.to_string()),
-        },
-    })
+/// Writes the files of a run into `dir` as one set (`polbrdf_io::write_files`).
+pub fn write_set(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<(), Error> {
+    polbrdf_io::write_files(dir, files)
+        .map(|_| ())
+        .map_err(|e| match e {
+            polbrdf_io::Error::Write { path, source } => Error::Io { path, source },
+            other => Error::Io {
+                path: dir.to_path_buf(),
+                source: std::io::Error::other(other.to_string()),
+            },
+        })
 }
