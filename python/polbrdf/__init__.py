@@ -873,3 +873,20 @@ def radiance(
         _scalar_or_array(d, shape),
         _scalar_or_array(a, shape),
     )
+
+
+# --- Lookup tables (optional extra `polbrdf[xarray]`; imported on first use) ----------------
+
+
+def __getattr__(name: str) -> object:
+    """``polbrdf.lut``: :func:`polbrdf.xarray.lut`, imported on first use so that
+    ``import polbrdf`` does not import xarray."""
+    if name == "lut":
+        try:
+            from . import xarray as _lut_module
+        except ImportError as e:
+            raise ImportError(
+                f"polbrdf.lut needs the optional extra: pip install 'polbrdf[xarray]' ({e})"
+            ) from e
+        return _lut_module.lut
+    raise AttributeError(f"module 'polbrdf' has no attribute {name!r}")
