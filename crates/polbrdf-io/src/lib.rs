@@ -10,6 +10,7 @@ pub mod error;
 pub mod library;
 pub mod material;
 pub mod measurements;
+pub mod npy;
 pub mod refractive;
 pub mod scene;
 pub mod write;

@@ -2,5 +2,6 @@
 
 mod csv_files;
 mod material_files;
+mod npy_files;
 mod refractive;
 mod scene;
