@@ -10,8 +10,8 @@ call, the GIL released); prints the wall time, the throughput and the peak RSS o
 (``resource.getrusage``), then deletes the store (unless ``--keep``).
 
 ``workers``: a ``dask.distributed.LocalCluster`` of 1, 2, … single-threaded worker processes
-(``RAYON_NUM_THREADS=1`` in each) computes a table of 2 × 10 × 40³ = 1.28·10⁶ matrices reduced to
-one number per chunk (no I/O), ``--repeat`` times: the median throughput per worker count.
+(``RAYON_NUM_THREADS=1`` in each) computes a table of 2 × 20 × 50³ = 5·10⁶ matrices reduced to
+one number (no I/O), ``--repeat`` times: the median throughput per worker count.
 """
 
 from __future__ import annotations
@@ -72,7 +72,7 @@ def table(args: argparse.Namespace) -> None:
     before = rss_mib()
     t0 = time.perf_counter()
     with dask.config.set(scheduler="threads", num_workers=args.threads):
-        ds.to_zarr(args.out, mode="w")
+        ds.to_zarr(args.out, mode="w", consolidated=False)
     dt = time.perf_counter() - t0
     size = sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(args.out) for f in fs)
     print(
@@ -86,7 +86,7 @@ def table(args: argparse.Namespace) -> None:
 def workers(args: argparse.Namespace) -> None:
     from distributed import Client, LocalCluster
 
-    wl, ti, tr, dp = grid(10, 40)
+    wl, ti, tr, dp = grid(20, 50)
     for n in args.workers:
         with LocalCluster(
             n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,

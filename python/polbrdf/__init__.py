@@ -879,14 +879,16 @@ def radiance(
 
 
 def __getattr__(name: str) -> object:
-    """``polbrdf.lut``: :func:`polbrdf.xarray.lut`, imported on first use so that
+    """``polbrdf.lut``, ``polbrdf.open_lut``: :mod:`polbrdf.xarray`'s, imported on first use so that
     ``import polbrdf`` does not import xarray."""
-    if name == "lut":
+    if name in ("lut", "open_lut", "xarray"):
+        import importlib
+
         try:
-            from . import xarray as _lut_module
+            _lut_module = importlib.import_module(".xarray", __name__)
         except ImportError as e:
             raise ImportError(
-                f"polbrdf.lut needs the optional extra: pip install 'polbrdf[xarray]' ({e})"
+                f"polbrdf.{name} needs the optional extra: pip install 'polbrdf[xarray]' ({e})"
             ) from e
-        return _lut_module.lut
+        return _lut_module if name == "xarray" else getattr(_lut_module, name)
     raise AttributeError(f"module 'polbrdf' has no attribute {name!r}")

@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 import polbrdf
 from polbrdf import FitResult, Material, _polbrdf
 
-__all__ = ["CONTRAST", "QUANTITIES", "lut"]
+__all__ = ["CONTRAST", "QUANTITIES", "lut", "open_lut"]
 
 #: Per-material quantities of a table (unpolarized illumination for the scalars).
 QUANTITIES = ("mueller", "brdf", "dolp", "aolp")
@@ -239,21 +239,18 @@ def _components(quantities: Sequence[str]) -> list[tuple[str, slice]]:
 def _engine(
     material: Material, coords: Sequence[NDArray[np.float64]], layout: list[tuple[str, slice]]
 ) -> NDArray[np.float64]:
-    """One engine call (:func:`polbrdf.evaluate`, the GIL released) over the grid of
+    """One engine call (:func:`polbrdf.evaluate`, or :func:`polbrdf.mueller` for the pBRDF
+    alone; the GIL released) over the grid of
     ``coords = (wavelength, theta_i, theta_r, dphi)``: the quantities packed along a last axis
     of ``(W, I, R, P, C)``."""
     wl, ti, tr, dp = coords
     shape = (len(wl), len(ti), len(tr), len(dp))
-    with_mueller = any(q == "mueller" for q, _ in layout)
-    e = polbrdf.evaluate(
-        material,
-        ti[None, :, None, None],
-        0.0,
-        tr[None, None, :, None],
-        dp[None, None, None, :],
-        wavelength_um=wl[:, None, None, None],
-        with_mueller=with_mueller,
-    )
+    args = (ti[None, :, None, None], 0.0, tr[None, None, :, None], dp[None, None, None, :])
+    wavelength = wl[:, None, None, None]
+    if [q for q, _ in layout] == ["mueller"]:  # the pBRDF alone: mueller's own engine call
+        return polbrdf.mueller(material, *args, wavelength_um=wavelength).reshape(shape + (16,))
+    with_mueller = layout[0][0] == "mueller"
+    e = polbrdf.evaluate(material, *args, wavelength_um=wavelength, with_mueller=with_mueller)
     width = layout[-1][1].stop
     out = np.empty(shape + (width,))
     for q, s in layout:
@@ -482,3 +479,71 @@ def _add_contrast(ds: xr.Dataset, pair: tuple[str, str], with_stderr: bool) -> N
                 "long_name": "standard error of " + _VARIABLE_ATTRS[v]["long_name"],
                 "method": "linear propagation, target and background fits independent",
             }
+
+
+# --- tables of the command line ------------------------------------------------------------
+
+
+def open_lut(path: str | os.PathLike) -> xr.Dataset:
+    """Open a table written by ``polbrdf lut --config lut.toml --out DIR`` as the Dataset
+    :func:`lut` gives for the same configuration: same variables, dimensions, coordinates and
+    attributes, the values memory-mapped from ``DIR/table.npy`` (nothing is read until used).
+
+    ``DIR/table.npy`` holds one row per (material, wavelength, theta_i, theta_r, dphi), in C
+    order, its columns (a structured dtype of ``<f8`` fields) ``m00 … m33``, ``brdf``,
+    ``dolp``, ``aolp_deg`` as configured; ``DIR/attrs.json`` the dimensions, coordinates,
+    columns and attributes.
+
+    Raises ``ValueError`` when the directory is not such a table (naming the file and what is
+    wrong) and ``OSError`` when it cannot be read.
+    """
+    folder = Path(path)
+    meta_path = folder / "attrs.json"
+    try:
+        meta = json.loads(meta_path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{meta_path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
+    try:
+        if meta["format"] != "polbrdf-lut 1":
+            raise ValueError(f"unknown format {meta['format']!r}")
+        dims, shape, columns = list(meta["dims"]), tuple(meta["shape"]), list(meta["columns"])
+        coords, attrs, quantities = meta["coords"], dict(meta["attrs"]), list(meta["quantities"])
+        table_path = folder / meta["table"]
+        if dims != list(_DIMS) or [len(coords[d]) for d in dims] != list(shape):
+            raise ValueError(f"dims {dims} and coordinates do not match the shape {shape}")
+    except (KeyError, TypeError, ValueError) as e:
+        raise ValueError(
+            f"{meta_path}: not a polbrdf lut sidecar: {type(e).__name__}: {e}"
+        ) from None
+    table = np.load(table_path, mmap_mode="r")
+    fields = table.dtype.names or ()
+    if list(fields) != columns or any(table.dtype[f] != np.dtype("<f8") for f in fields):
+        raise ValueError(f"{table_path}: columns {list(fields)}, attrs.json says {columns}")
+    rows = math.prod(shape)
+    if table.shape != (rows,):
+        raise ValueError(
+            f"{table_path}: {table.shape[0]} rows, attrs.json's shape {shape} needs {rows}"
+        )
+    raw = table.view(np.float64).reshape(shape + (len(columns),))  # a view of the mapping
+    data_vars = {}
+    for q in quantities:
+        if q == "mueller":
+            at = columns.index("m00")
+            values, var_dims = (
+                raw[..., at : at + 16].reshape(shape + (4, 4)),
+                _DIMS + ("row", "col"),
+            )
+        else:
+            values, var_dims = raw[..., columns.index("aolp_deg" if q == "aolp" else q)], _DIMS
+        data_vars[q] = (var_dims, values, dict(_VARIABLE_ATTRS[q]))
+    ds = xr.Dataset(
+        data_vars,
+        coords={
+            "material": np.array(coords["material"], dtype=object),
+            **{d: (d, np.asarray(coords[d], dtype=np.float64), _COORD_ATTRS[d]) for d in _GEOMETRY},
+            "row": ("row", np.arange(4), _COORD_ATTRS["row"]),
+            "col": ("col", np.arange(4), _COORD_ATTRS["col"]),
+        },
+    )
+    ds.attrs.update(attrs)
+    return ds

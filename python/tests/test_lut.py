@@ -90,6 +90,17 @@ def test_values_are_direct_calls_bit_for_bit(materials, chunks) -> None:
     assert len(set(paint)) == 1
 
 
+@pytest.mark.parametrize("quantities", [("mueller",), ("dolp",), ("aolp", "brdf")])
+def test_any_subset_of_quantities_is_the_direct_calls(materials, quantities) -> None:
+    ds = lut(materials, WL, TI, TR, DP, quantities=quantities, chunks={"dphi": 1}).compute()
+    assert set(ds.data_vars) == set(quantities)
+    for name, m in materials.items():
+        e = direct(m)
+        for q in quantities:
+            got = ds[q].sel(material=name).values
+            np.testing.assert_array_equal(bits(got), bits(getattr(e, q)), err_msg=q)
+
+
 def test_chunking_over_every_dimension_gives_the_same_table(materials) -> None:
     whole = lut(materials, WL, TI, TR, DP, quantities=polbrdf.xarray.QUANTITIES)
     chunked = lut(
@@ -281,9 +292,11 @@ def test_stderr_from_a_fit_result_and_from_fit_json(tmp_path) -> None:
         pytest.skip("POLBRDF_CLI not set: the fit.json half needs the polbrdf binary")
     csv = tmp_path / "meas.csv"
     rows = ["theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf,sigma_brdf,dolp,sigma_dolp"]
+    columns = (t, r, p, data["brdf"], sigma["brdf"], data["dolp"], sigma["dolp"])
     rows += [
-        f"{t[i]!r},0,{r[i]!r},{p[i]!r},{data['brdf'][i]!r},{sigma['brdf'][i]!r},"
-        f"{data['dolp'][i]!r},{sigma['dolp'][i]!r}"
+        ",".join(repr(float(c[i])) for c in columns[:1])
+        + ",0,"
+        + ",".join(repr(float(c[i])) for c in columns[1:])
         for i in range(24)
     ]
     csv.write_text("\n".join(rows) + "\n")
@@ -295,10 +308,12 @@ def test_stderr_from_a_fit_result_and_from_fit_json(tmp_path) -> None:
         check=True, capture_output=True,
     )  # fmt: skip
     fitted_m = polbrdf.Material.from_toml(tmp_path / "fitted.toml")
-    c = lut(fitted_m, *args[1:], covariance={"material0": tmp_path / "fit.json"})
+    c = lut({"material0": fitted_m}, *args[1:], covariance={"material0": tmp_path / "fit.json"})
     doc = json.loads((tmp_path / "fit.json").read_text())
     d = lut(
-        fitted_m, *args[1:], covariance={"material0": (doc["parameter_order"], doc["covariance"])}
+        {"material0": fitted_m},
+        *args[1:],
+        covariance={"material0": (doc["parameter_order"], doc["covariance"])},
     )
     np.testing.assert_array_equal(bits(c.dolp_stderr.values), bits(d.dolp_stderr.values))
     # the CLI's and the Python fit agree, so do their error bars (same data, same engine)
@@ -375,3 +390,87 @@ def test_refusals_of_materials_and_fits(tmp_path) -> None:
     (tmp_path / "other.json").write_text('{"chi2": 1}')
     with pytest.raises(ValueError, match="not a fit.json"):
         lut({"p": paint}, [0.6], [0.0], [0.0], [180.0], covariance={"p": tmp_path / "other.json"})
+
+
+# --- polbrdf lut (the command line) --------------------------------------------------------
+
+
+def test_cli_table_opens_as_the_python_table(tmp_path) -> None:
+    cli = os.environ.get("POLBRDF_CLI")
+    if not cli:
+        pytest.skip("POLBRDF_CLI not set: polbrdf lut needs the polbrdf binary")
+    (tmp_path / "gold.toml").write_text(
+        'name = "gold"\nindex = "library:Au/Johnson"\nsigma_deg = 8\nrho_d = 0.01\n'
+    )
+    (tmp_path / "lut.toml").write_text(
+        'materials = ["paint", "gold.toml"]\n'
+        "wavelength_um = [0.55, 0.6328, 1.0]\n"
+        "theta_i_deg = { start = 0, stop = 85, count = 4 }\n"
+        "theta_r_deg = [0, 20, 45, 70, 95]\n"
+        "dphi_deg = [0, 45, 180, 270]\n"
+        'quantities = ["aolp", "mueller", "dolp", "brdf"]\n'
+    )
+    out = tmp_path / "table"
+    run = subprocess.run(
+        [cli, "lut", "--config", str(tmp_path / "lut.toml"), "--out", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr
+    back = polbrdf.xarray.open_lut(out)
+    ti = np.linspace(0, 85, 4)
+    np.testing.assert_array_equal(back.theta_i.values, ti)  # a range is numpy.linspace
+    paint = polbrdf.Material.preset("paint")
+    mats = {
+        paint.name or "paint": paint,
+        "gold": polbrdf.Material.from_toml(tmp_path / "gold.toml"),
+    }
+    assert list(back.material.values) == list(mats)
+    want = lut(mats, WL, ti, TR, DP, quantities=polbrdf.xarray.QUANTITIES)
+    assert set(back.data_vars) == set(want.data_vars)
+    for v in want.data_vars:
+        assert back[v].dims == want[v].dims and back[v].attrs == want[v].attrs, v
+        np.testing.assert_array_equal(bits(back[v].values), bits(want[v].values), err_msg=v)
+    a, b = dict(back.attrs), dict(want.attrs)
+    assert json.loads(a.pop("materials_json")) == json.loads(b.pop("materials_json"))
+    assert a == b
+    # views of one memory-mapped table, not copies
+    for v in back.data_vars:
+        a = back[v].values
+        while a is not None and not isinstance(a, np.memmap):
+            a = a.base
+        assert isinstance(a, np.memmap), v
+    # and it writes as any table does
+    back.to_netcdf(tmp_path / "t.nc", engine="h5netcdf")
+    # an existing directory is refused, and left alone
+    again = subprocess.run(
+        [cli, "lut", "--config", str(tmp_path / "lut.toml"), "--out", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert again.returncode == 4 and "exists" in again.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["attrs.json", "table.npy"]
+
+
+def test_open_lut_refuses_what_is_no_table(tmp_path) -> None:
+    (tmp_path / "attrs.json").write_text('{"format": "other"}')
+    with pytest.raises(ValueError, match="not a polbrdf lut sidecar"):
+        polbrdf.xarray.open_lut(tmp_path)
+    (tmp_path / "attrs.json").write_text("{")
+    with pytest.raises(ValueError, match=r"attrs.json:1:2: not valid JSON"):
+        polbrdf.xarray.open_lut(tmp_path)
+
+
+def test_benchmark_script_runs_small(tmp_path) -> None:
+    pytest.importorskip("zarr", reason="zarr is not installed")
+    script = os.path.join(os.path.dirname(__file__), "..", "examples", "lut_bench.py")
+    r = subprocess.run(
+        [sys.executable, script, "table", "--wavelengths", "2", "--n", "6", "--chunk-theta-i", "2",
+         "--out", str(tmp_path / "b.zarr")],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "8.640e+02 Mueller matrices" in r.stdout and "peak RSS" in r.stdout
+    assert not (tmp_path / "b.zarr").exists()  # deleted after the run

@@ -10,5 +10,6 @@ mod emission;
 mod eval;
 mod fit;
 mod golden;
+mod lut;
 mod map;
 mod spectral;
