@@ -928,3 +928,22 @@ def radiance(
         _scalar_or_array(d, shape),
         _scalar_or_array(a, shape),
     )
+
+
+# --- Lookup tables (optional extra `polbrdf[xarray]`; imported on first use) ----------------
+
+
+def __getattr__(name: str) -> object:
+    """``polbrdf.lut``, ``polbrdf.open_lut``: :mod:`polbrdf.xarray`'s, imported on first use so that
+    ``import polbrdf`` does not import xarray."""
+    if name in ("lut", "open_lut", "xarray"):
+        import importlib
+
+        try:
+            _lut_module = importlib.import_module(".xarray", __name__)
+        except ImportError as e:
+            raise ImportError(
+                f"polbrdf.{name} needs the optional extra: pip install 'polbrdf[xarray]' ({e})"
+            ) from e
+        return _lut_module if name == "xarray" else getattr(_lut_module, name)
+    raise AttributeError(f"module 'polbrdf' has no attribute {name!r}")

@@ -154,6 +154,9 @@ def index_flat(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """n and k of the material at each wavelength (µm)."""
 
+def derivative_step(name: str, value: float) -> float:
+    """The fit's central-difference step 1e-6·max(|value|, scale) for parameter ``name``."""
+
 def evaluate_flat(
     material: Material,
     theta_i: NDArray[np.float64],

@@ -946,10 +946,20 @@ fn index_flat<'py>(
             "`wavelength_um` must be a contiguous 1-D array: {e}"
         ))
     })?;
-    let (n, k) = material.inner.spec().index_columns(wl).map_err(|(i, e)| {
+    let spec = material.inner.spec();
+    let (n, k) = py.detach(|| spec.index_columns(wl)).map_err(|(i, e)| {
         PyValueError::new_err(format!("wavelength_um = {} (at index {i}): {e}", wl[i]))
     })?;
     Ok((PyArray1::from_vec(py, n), PyArray1::from_vec(py, k)))
+}
+
+/// The central-difference step of the fit's Jacobian for parameter `name` at value `value`
+/// (`polbrdf_fit::Param::derivative_step`): the uncertainty propagation of `polbrdf.xarray`
+/// differentiates with the same steps as the fit that produced the covariance.
+#[pyfunction]
+fn derivative_step(name: &str, value: f64) -> PyResult<f64> {
+    let p = polbrdf_fit::Param::parse(name).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(p.derivative_step(value))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1935,6 +1945,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
     m.add_function(wrap_pyfunction!(index_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(derivative_step, m)?)?;
     m.add_function(wrap_pyfunction!(planck_flat, m)?)?;
     m.add_function(wrap_pyfunction!(brightness_temperature_flat, m)?)?;
     m.add_function(wrap_pyfunction!(emissivity_flat, m)?)?;

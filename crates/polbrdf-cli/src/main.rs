@@ -13,6 +13,7 @@ mod emission;
 mod error;
 mod eval;
 mod fit;
+mod lut;
 mod map;
 mod materials;
 mod output;
@@ -139,6 +140,21 @@ enum Command {
     /// BRDF+DoLP evaluations per second on one thread and on all threads (medians of several
     /// repeats), single-evaluation latency, a checksum and the CPU (with its SIMD level).
     Bench(bench::Args),
+    /// A lookup table over materials × wavelengths × in-plane geometries (θi, θr, Δφ = φr − φi)
+    /// from a TOML configuration (see docs/scaling.md).
+    ///
+    /// Writes the new directory --out: table.npy (one row per material, wavelength, θi, θr, Δφ
+    /// in C order; columns m00 … m33, brdf, dolp, aolp_deg as asked) and attrs.json
+    /// (dimensions, coordinates, conventions, materials). Python: polbrdf.xarray.open_lut(DIR).
+    Lut {
+        /// The table's configuration (TOML: materials, wavelength_um, theta_i_deg,
+        /// theta_r_deg, dphi_deg, quantities).
+        #[arg(long, value_name = "lut.toml")]
+        config: PathBuf,
+        /// The directory to create (an existing one is refused).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+    },
     /// Check that a parameter set is physically valid: F realizable (coherency matrix positive
     /// semidefinite) over a dense grid, albedo ≤ 1 at every incidence angle, and reciprocity where
     /// the model form has it. Exit code 6 when a check fails.
@@ -239,6 +255,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Radiance(args) => radiance::run(&args),
         Command::Map(args) => map::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Lut { config, out } => lut::run(&config, &out),
         Command::Spectrum(args) => sweep::run(&args),
     }
 }

@@ -246,6 +246,21 @@ fn emission(
     case(what, files, &args, code, says)
 }
 
+/// `lut` with a configuration `l.toml` of `materials = ["paint"]` and the axes, then `tail`.
+fn lut_config(what: &'static str, tail: &str, code: i32, says: &[&'static str]) -> Case {
+    let toml =
+        format!("materials = [\"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0, 30]\n{tail}");
+    case(
+        what,
+        vec![("l.toml", toml.into_bytes())],
+        &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"],
+        code,
+        says,
+    )
+}
+
+const LUT_AXES: &str = "theta_r_deg = [0, 30]\ndphi_deg = [180]\n";
+
 fn table() -> Vec<Case> {
     let long_field = "7".repeat(100_000) + "x";
     vec![
@@ -446,6 +461,22 @@ fn table() -> Vec<Case> {
         case("albedo: output is the material", vec![("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["albedo", "--material", "{d}/m.toml", "--output", "{d}/m.toml"], 3, &["same file as the input"]),
         case("emission: output is the material", vec![("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["emission", "--material", "{d}/m.toml", "--output", "{d}/m.toml"], 3, &["same file as the input"]),
         case("radiance: output is the scene", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/s.toml"], 3, &["same file as the input"]),
+        // lut configurations.
+        lut_config("lut: TOML syntax", "theta_r_deg = [0, \n", 3, &["l.toml:5", "invalid array"]),
+        lut_config("lut: unknown key", &format!("{LUT_AXES}colour = 3\n"), 3, &["l.toml:6", "`colour`", "unknown key"]),
+        lut_config("lut: missing axis", "theta_r_deg = [0]\n", 3, &["l.toml", "missing key `dphi_deg`"]),
+        lut_config("lut: axis not increasing", "theta_r_deg = [30, 0]\ndphi_deg = [180]\n", 3, &["l.toml:4", "`theta_r_deg`", "strictly increasing"]),
+        lut_config("lut: zenith beyond 180", "theta_r_deg = [0, 190]\ndphi_deg = [180]\n", 3, &["l.toml:4", "`theta_r_deg`", "element 1 = 190", "[0, 180]"]),
+        lut_config("lut: string in an axis", "theta_r_deg = [0, \"x\"]\ndphi_deg = [180]\n", 3, &["l.toml:4", "element 1 must be a number"]),
+        lut_config("lut: empty axis", "theta_r_deg = []\ndphi_deg = [180]\n", 3, &["l.toml:4", "empty array"]),
+        lut_config("lut: range of count 0", "theta_r_deg = [0]\ndphi_deg = { start = 0, stop = 180, count = 0 }\n", 3, &["l.toml:5", "`dphi_deg`", "`count` = 0"]),
+        lut_config("lut: range with an unknown key", "theta_r_deg = [0]\ndphi_deg = { start = 0, stop = 180, step = 10 }\n", 3, &["l.toml:5", "unknown key `step`"]),
+        lut_config("lut: unknown quantity", &format!("{LUT_AXES}quantities = [\"dop\"]\n"), 3, &["l.toml:6", "`quantities`", "unknown quantity `dop`"]),
+        lut_config("lut: too many rows", "theta_r_deg = { start = 0, stop = 90, count = 9000000 }\ndphi_deg = { start = 0, stop = 180, count = 9000000 }\n", 3, &["l.toml", "more than 100000000000 rows"]),
+        case("lut: unknown material", vec![("l.toml", t(&format!("materials = [\"nope\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:1", "`materials`", "nope"]),
+        case("lut: two materials of one name", vec![("l.toml", t(&format!("materials = [\"paint\", \"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:1", "two materials are named `paint`"]),
+        case("lut: wavelength outside a spectral index", vec![("m.toml", t(SPECTRAL)), ("l.toml", t(&format!("materials = [\"m.toml\"]\nwavelength_um = [0.6, 50]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:2", "`wavelength_um`", "element 1 = 50", "outside"]),
+        case("lut: output exists", vec![("out", t("keep me")), ("l.toml", t(&format!("materials = [\"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 4, &["out", "exists"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),

@@ -10,6 +10,7 @@ mod emission;
 mod eval;
 mod fit;
 mod golden;
+mod lut;
 mod map;
 mod outputs;
 mod spectral;

@@ -1108,7 +1108,7 @@ fn natural_jacobian(problem: &Problem<'_>, x: &[f64], m: usize) -> Vec<Vec<f64>>
     let mut xp = x.to_vec();
     (0..x.len())
         .map(|j| {
-            let h = 1e-6 * x[j].abs().max(problem.free[j].step_scale());
+            let h = problem.free[j].derivative_step(x[j]);
             xp[j] = x[j] + h;
             problem.residuals(&xp, &mut plus);
             let central = x[j] - h > 0.0;

@@ -202,6 +202,12 @@ impl Param {
         }
     }
 
+    /// The step `h = 1e-6·max(|x|, step_scale)` of the central-difference derivatives at value
+    /// `x` (the fit's Jacobian, and the uncertainty propagation of the Python lookup tables).
+    pub fn derivative_step(self, x: f64) -> f64 {
+        1e-6 * x.abs().max(self.step_scale())
+    }
+
     /// A typical magnitude of the parameter: the start used instead of exactly 0 for a
     /// non-negative parameter (at k = 0 the model is even in k, so the gradient vanishes there
     /// and a fit started at 0 could never leave it), the scatter of extra starts around 0, and

@@ -8,6 +8,7 @@
 pub mod csv_io;
 pub mod error;
 pub mod library;
+pub mod lut;
 pub mod material;
 pub mod measurements;
 pub mod npy;
