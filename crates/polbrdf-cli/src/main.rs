@@ -13,6 +13,7 @@ mod emission;
 mod error;
 mod eval;
 mod fit;
+mod limits;
 mod map;
 mod materials;
 mod output;
