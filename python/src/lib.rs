@@ -644,6 +644,34 @@ fn chunk_batch<T>(
     f(&batch)
 }
 
+/// A new float64 array of `n` zeros, or `MemoryError` when it cannot be allocated (numpy's
+/// `zeros`: `PyArray1::zeros` would panic on a null pointer instead, a `BaseException`).
+fn zeros1(py: Python<'_>, n: usize) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    let a = py.import("numpy")?.call_method1("zeros", ((n,),))?;
+    Ok(a.cast_into::<PyArray1<f64>>()?)
+}
+
+/// A new `(n, m)` float64 array of zeros, or `MemoryError` ([`zeros1`]).
+fn zeros2(py: Python<'_>, n: usize, m: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let a = py.import("numpy")?.call_method1("zeros", ((n, m),))?;
+    Ok(a.cast_into::<PyArray2<f64>>()?)
+}
+
+/// `MemoryError` unless `count` values of `T` can be allocated (tried, then freed): for results
+/// the core returns as a `Vec`, whose failed allocation would abort the interpreter.
+fn can_allocate<T>(count: usize) -> PyResult<()> {
+    let fail = || {
+        pyo3::exceptions::PyMemoryError::new_err(format!(
+            "cannot allocate {count} results of {} bytes",
+            size_of::<T>()
+        ))
+    };
+    let bytes = count.checked_mul(size_of::<T>()).ok_or_else(fail)?;
+    Vec::<u8>::new()
+        .try_reserve_exact(bytes)
+        .map_err(|_| fail())
+}
+
 /// The Python argument that a core angle name stands for (`theta_i_deg` → `theta_i`).
 fn python_name(core: &'static str) -> &'static str {
     ["theta_i", "phi_i", "theta_r", "phi_r"]
@@ -670,7 +698,7 @@ fn mueller_flat<'py>(
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
-    let out = PyArray2::<f64>::zeros(py, [n, 16], false);
+    let out = zeros2(py, n, 16)?;
     {
         let mut rw = out.readwrite();
         let flat = rw.as_slice_mut().expect("a new array is contiguous");
@@ -708,8 +736,8 @@ fn brdf_dolp_flat<'py>(
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
-    let brdf = PyArray1::<f64>::zeros(py, n, false);
-    let dolp = PyArray1::<f64>::zeros(py, n, false);
+    let brdf = zeros1(py, n)?;
+    let dolp = zeros1(py, n)?;
     {
         let (mut bw, mut dw) = (brdf.readwrite(), dolp.readwrite());
         let b = bw.as_slice_mut().expect("a new array is contiguous");
@@ -756,10 +784,10 @@ fn evaluate_flat<'py>(
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
     let n = common_len(input).map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
-    let brdf = PyArray1::<f64>::zeros(py, n, false);
-    let dolp = PyArray1::<f64>::zeros(py, n, false);
-    let aolp = PyArray1::<f64>::zeros(py, n, false);
-    let mueller = with_mueller.then(|| PyArray2::<f64>::zeros(py, [n, 16], false));
+    let brdf = zeros1(py, n)?;
+    let dolp = zeros1(py, n)?;
+    let aolp = zeros1(py, n)?;
+    let mueller = with_mueller.then(|| zeros2(py, n, 16)).transpose()?;
     {
         let (mut bw, mut dw, mut aw) = (brdf.readwrite(), dolp.readwrite(), aolp.readwrite());
         let mut mw = mueller.as_ref().map(|m| m.readwrite());
@@ -938,7 +966,7 @@ fn planck_flat<'py>(
         &temperature_k,
         ["wavelength_um", "temperature_k"],
     )?;
-    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    let out = zeros1(py, l.len())?;
     {
         let mut w = out.readwrite();
         let o = w.as_slice_mut().expect("a new array is contiguous");
@@ -982,7 +1010,7 @@ fn brightness_temperature_flat<'py>(
             .and_then(|_| positive_at("radiance", r, i))
             .map_err(|e| element_err(py, &e))?;
     }
-    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    let out = zeros1(py, l.len())?;
     {
         let mut w = out.readwrite();
         let o = w.as_slice_mut().expect("a new array is contiguous");
@@ -1104,6 +1132,9 @@ fn emissivity_flat<'py>(
     let t = flat(&theta_r, "theta_r")?;
     let n = t.len();
     let wl = wavelength_slice(&wavelength_um, n)?;
+    // The results and their 14 output columns: MemoryError now rather than an abort later.
+    can_allocate::<Emissivity>(n)?;
+    can_allocate::<f64>(n.saturating_mul(14))?;
     let m = &material.inner;
     let e = py
         .detach(|| emissivity_batch(m, t, degrees, wl))
@@ -1628,6 +1659,12 @@ impl PyFitResult {
     #[getter]
     fn starts(&self) -> (usize, usize) {
         self.result.starts
+    }
+    /// Warnings about the data (e.g. repeated rows: the uncertainties are not meaningful);
+    /// empty for a well-posed fit.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.result.warnings.clone()
     }
     /// The fitted material.
     #[getter]
