@@ -115,6 +115,38 @@ def _check_material(material: Material) -> None:
         )
 
 
+#: The most dimensions of a broadcast argument (NumPy's limit for broadcasting).
+MAX_DIMS = 32
+
+#: The most extra starts of :func:`fit` (the CLI's ``--starts`` limit).
+MAX_STARTS = 10_000
+
+
+def _real(name: str, a: ArrayLike, masked_as_nan: bool = False) -> np.ndarray:
+    """``a`` as an array of real numbers: complex or other dtypes raise ``TypeError``, more than
+    :data:`MAX_DIMS` dimensions ``ValueError``. A masked array's masked entries are NaN ("not
+    measured") with ``masked_as_nan`` (fit data and sigma), and are refused otherwise (angles
+    and wavelengths have no "not given" value)."""
+    if isinstance(a, np.ma.MaskedArray):
+        mask = np.ma.getmaskarray(a)
+        if mask.any() and not masked_as_nan:
+            raise ValueError(
+                f"`{name}` is a masked array with {int(mask.sum())} masked entr"
+                f"{'y' if mask.sum() == 1 else 'ies'}: an angle or wavelength must be given "
+                "everywhere (drop the masked entries, or fill them)"
+            )
+        if a.dtype.kind not in "biuf":
+            raise TypeError(f"`{name}` must hold real numbers, got dtype {a.dtype}")
+        arr = np.ma.filled(a.astype(np.float64), np.nan)
+    else:
+        arr = np.asarray(a)
+    if arr.dtype.kind not in "biuf":
+        raise TypeError(f"`{name}` must hold real numbers, got dtype {arr.dtype}")
+    if arr.ndim > MAX_DIMS:
+        raise ValueError(f"`{name}` has {arr.ndim} dimensions: at most {MAX_DIMS}")
+    return arr
+
+
 def _broadcast(
     names: Sequence[str], values: tuple[ArrayLike, ...], singles: int = 0
 ) -> tuple[tuple[int, ...], tuple[_F64, ...]]:
@@ -122,12 +154,7 @@ def _broadcast(
     C-contiguous float64 arrays (views when the input already is one, copies otherwise). The
     first ``singles`` arguments are passed as one value when they hold one (a scalar), for the
     Rust side to broadcast without a materialized array."""
-    arrays = []
-    for name, a in zip(names, values):
-        arr = np.asarray(a)
-        if arr.dtype.kind not in "biuf":
-            raise TypeError(f"`{name}` must hold real numbers, got dtype {arr.dtype}")
-        arrays.append(arr)
+    arrays = [_real(name, a) for name, a in zip(names, values)]
     try:
         b = np.broadcast_arrays(*arrays)
     except ValueError as e:
@@ -465,10 +492,17 @@ def fit(
     unknown = set(sigma) - set(data)
     if unknown:
         raise ValueError(f"sigma given for {sorted(unknown)} but no such data")
+    if isinstance(starts, bool) or not isinstance(starts, (int, np.integer)):
+        raise TypeError(f"starts must be an integer, not {type(starts).__name__}")
+    if not 0 <= starts <= MAX_STARTS:
+        raise ValueError(f"starts = {starts}: must lie in [0, {MAX_STARTS}] (each is a full fit)")
     names = list(data)
-    arrays = [np.asarray(data[k], dtype=np.float64) for k in names]
+    # Masked entries of data and sigma are "not measured" (NaN); complex values are refused.
+    arrays = [_real(k, data[k], masked_as_nan=True).astype(np.float64) for k in names]
     sig_names = [k for k in names if k in sigma]
-    sig_arrays = [np.asarray(sigma[k], dtype=np.float64) for k in sig_names]
+    sig_arrays = [
+        _real(f"sigma[{k!r}]", sigma[k], masked_as_nan=True).astype(np.float64) for k in sig_names
+    ]
     geometry = _args((theta_i, phi_i, theta_r, phi_r), wavelength_um)
     shape, flat = _flatten(material, geometry)
     try:

@@ -281,6 +281,9 @@ class FitResult:
     def starts(self) -> tuple[int, int]:
         """(starts tried, starts that reached the best χ²)."""
     @property
+    def warnings(self) -> list[str]:
+        """Warnings about the data (e.g. repeated rows: uncertainties not meaningful)."""
+    @property
     def material(self) -> Material:
         """The fitted material."""
     @property

@@ -678,6 +678,42 @@ fn chunk_batch<T>(
     f(&batch)
 }
 
+/// A new float64 array of `n` zeros, or `MemoryError` when it cannot be allocated (numpy's
+/// `zeros`: `PyArray1::zeros` would panic on a null pointer instead, a `BaseException`).
+fn zeros1(py: Python<'_>, n: usize) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    let a = py.import("numpy")?.call_method1("zeros", ((n,),))?;
+    Ok(a.cast_into::<PyArray1<f64>>()?)
+}
+
+/// A new `(n, m)` array of zeros of `T`'s dtype, or `MemoryError` ([`zeros1`]).
+fn zeros2<T: numpy::Element>(
+    py: Python<'_>,
+    n: usize,
+    m: usize,
+) -> PyResult<Bound<'_, PyArray2<T>>> {
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("dtype", numpy::dtype::<T>(py))?;
+    let a = py
+        .import("numpy")?
+        .call_method("zeros", ((n, m),), Some(&kwargs))?;
+    Ok(a.cast_into::<PyArray2<T>>()?)
+}
+
+/// `MemoryError` unless `count` values of `T` can be allocated (tried, then freed): for results
+/// the core returns as a `Vec`, whose failed allocation would abort the interpreter.
+fn can_allocate<T>(count: usize) -> PyResult<()> {
+    let fail = || {
+        pyo3::exceptions::PyMemoryError::new_err(format!(
+            "cannot allocate {count} results of {} bytes",
+            size_of::<T>()
+        ))
+    };
+    let bytes = count.checked_mul(size_of::<T>()).ok_or_else(fail)?;
+    Vec::<u8>::new()
+        .try_reserve_exact(bytes)
+        .map_err(|_| fail())
+}
+
 /// The Python argument that a core angle name stands for (`theta_i_deg` → `theta_i`).
 fn python_name(core: &'static str) -> &'static str {
     ["theta_i", "phi_i", "theta_r", "phi_r"]
@@ -766,7 +802,7 @@ fn mueller_flat<'py>(
         Precision::F64 => {
             let arr = match &out {
                 Some(o) => out_rows::<f64>(o, n, "float64")?,
-                None => PyArray2::<f64>::zeros(py, [n, 16], false),
+                None => zeros2::<f64>(py, n, 16)?,
             };
             let mut rw = arr.try_readwrite().map_err(|e| {
                 PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
@@ -786,7 +822,7 @@ fn mueller_flat<'py>(
         Precision::F32 => {
             let arr = match &out {
                 Some(o) => out_rows::<f32>(o, n, "float32")?,
-                None => PyArray2::<f32>::zeros(py, [n, 16], false),
+                None => zeros2::<f32>(py, n, 16)?,
             };
             let mut rw = arr.try_readwrite().map_err(|e| {
                 PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
@@ -824,8 +860,8 @@ fn brdf_dolp_flat<'py>(
     let n = broadcast_len(input, wavelength_um.as_ref().map(|w| w.len()))
         .map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
-    let brdf = PyArray1::<f64>::zeros(py, n, false);
-    let dolp = PyArray1::<f64>::zeros(py, n, false);
+    let brdf = zeros1(py, n)?;
+    let dolp = zeros1(py, n)?;
     {
         let (mut bw, mut dw) = (brdf.readwrite(), dolp.readwrite());
         let b = bw.as_slice_mut().expect("a new array is contiguous");
@@ -873,10 +909,10 @@ fn evaluate_flat<'py>(
     let n = broadcast_len(input, wavelength_um.as_ref().map(|w| w.len()))
         .map_err(|e| core_err(py, &e))?;
     let wl = wavelength_slice(&wavelength_um, n)?;
-    let brdf = PyArray1::<f64>::zeros(py, n, false);
-    let dolp = PyArray1::<f64>::zeros(py, n, false);
-    let aolp = PyArray1::<f64>::zeros(py, n, false);
-    let mueller = with_mueller.then(|| PyArray2::<f64>::zeros(py, [n, 16], false));
+    let brdf = zeros1(py, n)?;
+    let dolp = zeros1(py, n)?;
+    let aolp = zeros1(py, n)?;
+    let mueller = with_mueller.then(|| zeros2(py, n, 16)).transpose()?;
     {
         let (mut bw, mut dw, mut aw) = (brdf.readwrite(), dolp.readwrite(), aolp.readwrite());
         let mut mw = mueller.as_ref().map(|m| m.readwrite());
@@ -1065,7 +1101,7 @@ fn planck_flat<'py>(
         &temperature_k,
         ["wavelength_um", "temperature_k"],
     )?;
-    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    let out = zeros1(py, l.len())?;
     {
         let mut w = out.readwrite();
         let o = w.as_slice_mut().expect("a new array is contiguous");
@@ -1109,7 +1145,7 @@ fn brightness_temperature_flat<'py>(
             .and_then(|_| positive_at("radiance", r, i))
             .map_err(|e| element_err(py, &e))?;
     }
-    let out = PyArray1::<f64>::zeros(py, l.len(), false);
+    let out = zeros1(py, l.len())?;
     {
         let mut w = out.readwrite();
         let o = w.as_slice_mut().expect("a new array is contiguous");
@@ -1231,6 +1267,9 @@ fn emissivity_flat<'py>(
     let t = flat(&theta_r, "theta_r")?;
     let n = t.len();
     let wl = wavelength_slice(&wavelength_um, n)?;
+    // The results and their 14 output columns: MemoryError now rather than an abort later.
+    can_allocate::<Emissivity>(n)?;
+    can_allocate::<f64>(n.saturating_mul(14))?;
     let m = &material.inner;
     let e = py
         .detach(|| emissivity_batch(m, t, degrees, wl))
@@ -1755,6 +1794,12 @@ impl PyFitResult {
     #[getter]
     fn starts(&self) -> (usize, usize) {
         self.result.starts
+    }
+    /// Warnings about the data (e.g. repeated rows: the uncertainties are not meaningful);
+    /// empty for a well-posed fit.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.result.warnings.clone()
     }
     /// The fitted material.
     #[getter]

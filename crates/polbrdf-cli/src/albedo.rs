@@ -41,6 +41,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     } else {
         args.theta_i_deg.clone()
     };
+    crate::limits::at_most("--theta-i-deg (count)", angles.len(), crate::limits::ANGLES)?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
         return Err(CliError::Invalid(format!(
             "--theta-i-deg = {bad}: the incidence angle must lie in [0, 90)"

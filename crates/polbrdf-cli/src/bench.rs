@@ -406,6 +406,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if args.count == 0 {
         return Err(CliError::Invalid("--count must be at least 1".into()));
     }
+    crate::limits::at_most("--count", args.count, crate::limits::BENCH_COUNT)?;
+    crate::limits::at_most("--repeats", args.repeats, crate::limits::BENCH_REPEATS)?;
     if args.repeats < 5 {
         return Err(CliError::Invalid(format!(
             "--repeats = {}: at least 5 repeats are needed for a meaningful median",
@@ -417,6 +419,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if threads == 0 {
         return Err(CliError::Invalid("--threads must be at least 1".into()));
     }
+    crate::limits::at_most("--threads", threads, crate::limits::THREADS)?;
     let material = polbrdf::preset("paint")
         .and_then(|s| s.build())
         .map_err(CliError::Model)?;

@@ -15,6 +15,21 @@ pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(),
             "--grid-deg = {grid_deg}: must lie in (0, 30]"
         )));
     }
+    // The grid's size (physical_validity's loops), bounded before it is allocated.
+    let zeniths = (90.0 / grid_deg).ceil() as usize;
+    let azimuths = (180.0 / grid_deg).ceil() as usize;
+    let max = crate::limits::CHECK_GEOMETRIES;
+    if zeniths
+        .checked_mul(zeniths)
+        .and_then(|n| n.checked_mul(azimuths))
+        .is_none_or(|n| n > max)
+    {
+        return Err(CliError::Usage(format!(
+            "--grid-deg = {grid_deg:e}: the grid would have more than {max} geometries (the \
+             limit of this option, about 1 GB; see the README's Reliability section): give a \
+             step of at least 0.9°"
+        )));
+    }
     let grid = CheckGrid {
         zenith_step: grid_deg.to_radians(),
         azimuth_step: (2.0 * grid_deg).to_radians(),

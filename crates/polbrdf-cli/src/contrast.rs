@@ -81,6 +81,7 @@ impl Args {
         if self.top == 0 {
             return Err(CliError::Invalid("--top must be at least 1".into()));
         }
+        crate::limits::at_most("--top", self.top, crate::limits::TOP)?;
         if !(self.min_separation_deg.is_finite()
             && (0.0..=180.0).contains(&self.min_separation_deg))
         {

@@ -64,6 +64,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     } else {
         args.theta_deg.clone()
     };
+    crate::limits::at_most("--theta-deg (count)", angles.len(), crate::limits::ANGLES)?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
         return Err(CliError::Invalid(format!(
             "--theta-deg = {bad}: the view zenith angle must lie in [0, 90)"

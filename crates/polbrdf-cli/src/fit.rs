@@ -31,8 +31,11 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
     polbrdf_io::check_distinct(&[args.data, Path::new(args.material)], &outputs)?;
     let base = polbrdf_io::load_material(args.material)?;
     let free = Param::parse_list(args.free)?;
+    crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
     let mut data = Vec::new();
+    // The line of each measurement, for messages about the data.
+    let mut lines = Vec::new();
     for (row, g) in table.geometries.iter().enumerate() {
         for col in &table.columns {
             let Some(value) = col.values[row] else {
@@ -45,8 +48,29 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
                 sigma: col.sigmas.as_ref().and_then(|s| s[row]),
                 wavelength_um: table.wavelengths.as_ref().map(|w| w[row]),
             });
+            lines.push((table.lines[row], col.name.as_str()));
         }
     }
+    if let Err(polbrdf_fit::FitError::DataOutOfRange {
+        index,
+        value,
+        sigma,
+        ..
+    }) = polbrdf_fit::check_measurements(&data)
+    {
+        let (line, field) = lines[index];
+        return Err(CliError::Io(polbrdf_io::Error::Field {
+            path: args.data.to_path_buf(),
+            line,
+            field: field.to_string(),
+            message: format!(
+                "{value:e} (σ = {sigma}) is too large for a least-squares fit: |value/σ| > \
+                 {:e} makes χ² overflow (an outlier or a unit error?)",
+                polbrdf_fit::MAX_WEIGHTED_VALUE
+            ),
+        }));
+    }
+    drop(lines);
     let opts = FitOptions {
         extra_starts: args.starts,
         seed: args.seed,
@@ -141,6 +165,7 @@ fn to_json(r: &FitResult, data: &Path) -> Value {
         "zero_bistatic": zbs,
         "data": data.display().to_string(),
         "measurements": r.residuals.len(),
+        "warnings": r.warnings,
     })
 }
 
@@ -175,6 +200,9 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
             ""
         }
     );
+    for w in &r.warnings {
+        s += &format!("  warning: {w}\n");
+    }
     s += &format!(
         "  {:<10} {:>16} {:>14} {:>10}\n",
         "parameter", "value", "std. error", "rel."

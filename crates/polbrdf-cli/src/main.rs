@@ -13,6 +13,7 @@ mod emission;
 mod error;
 mod eval;
 mod fit;
+mod limits;
 mod lut;
 mod map;
 mod materials;

@@ -116,6 +116,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     "--phi-deg = {bad}: must be finite"
                 )));
             }
+            crate::limits::product_at_most(
+                "--theta-deg × --phi-deg",
+                thetas.len(),
+                phis.len(),
+                crate::limits::ANGLES,
+            )?;
             thetas
                 .iter()
                 .flat_map(|t| phis.iter().map(move |p| (*t, *p)))

@@ -118,6 +118,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     if args.points < 2 {
         return Err(CliError::Invalid("--points must be at least 2".into()));
     }
+    crate::limits::at_most("--points", args.points, crate::limits::SPECTRUM_POINTS)?;
     let geometry = match &args.geometry_deg {
         Some(text) => {
             let g = numbers(text, "--geometry-deg", 4)?;

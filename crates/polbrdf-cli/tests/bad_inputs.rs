@@ -99,6 +99,29 @@ fn fit_data(what: &'static str, csv: &str, code: i32, says: &[&'static str]) -> 
     )
 }
 
+/// `fit` of the paint preset on a valid measurement file with `--starts N`.
+fn fit_starts(what: &'static str, n: &'static str, code: i32, says: &[&'static str]) -> Case {
+    case(
+        what,
+        vec![("d.csv", t(MEAS))],
+        &[
+            "fit",
+            "--material",
+            "paint",
+            "--data",
+            "{d}/d.csv",
+            "--free",
+            "n",
+            "--starts",
+            n,
+            "--output",
+            "{d}/out.json",
+        ],
+        code,
+        says,
+    )
+}
+
 /// A small valid refractiveindex.info file (0.4–0.8 µm).
 const YML: &str =
     "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 0.0\n        0.8 1.4 0.1\n";
@@ -477,6 +500,34 @@ fn table() -> Vec<Case> {
         case("lut: two materials of one name", vec![("l.toml", t(&format!("materials = [\"paint\", \"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:1", "two materials are named `paint`"]),
         case("lut: wavelength outside a spectral index", vec![("m.toml", t(SPECTRAL)), ("l.toml", t(&format!("materials = [\"m.toml\"]\nwavelength_um = [0.6, 50]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:2", "`wavelength_um`", "element 1 = 50", "outside"]),
         case("lut: output exists", vec![("out", t("keep me")), ("l.toml", t(&format!("materials = [\"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 4, &["out", "exists"]),
+        // Issue 18: sizes a user can type, bounded before allocation (exit 2, the option and
+        // its limit named).
+        case("check grid too fine", vec![], &["check", "--material", "paint", "--grid-deg", "0.1"], 2, &["--grid-deg", "2000000 geometries"]),
+        case("check grid 1e-300", vec![], &["check", "--material", "paint", "--grid-deg", "1e-300"], 2, &["--grid-deg", "2000000"]),
+        fit_starts("fit starts u64::MAX", "18446744073709551615", 2, &["--starts", "at most 10000"]),
+        case("contrast top 1e9", vec![], &["contrast", "--target", "paint", "--background", "paint", "--sun-zenith-deg", "30", "--top", "1000000000", "--min-separation-deg", "0", "--out", "{d}/out"], 2, &["--top", "at most 1000"]),
+        case("bench count 1e10", vec![], &["bench", "--count", "10000000000"], 2, &["--count", "at most 10000000"]),
+        case("bench threads 20000", vec![], &["bench", "--threads", "20000"], 2, &["--threads", "at most 1024"]),
+        case("bench repeats 1e9", vec![], &["bench", "--repeats", "1000000000"], 2, &["--repeats", "at most 1000"]),
+        case("spectrum points 1e9", vec![], &["spectrum", "--material", "paint", "--points", "1000000000", "--out", "{d}/out"], 2, &["--points", "at most 1000000"]),
+        // Issue 18: an unterminated quote never drops rows; a row spanning lines is an error at
+        // the line where its quote opened.
+        eval_geometry("unterminated quote", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,label\n30,0,30,180,\"abc\n40,0,40,180,x\n50,0,50,180,y\n"), 3, &["g.csv:2:", "quote"]),
+        fit_data("unterminated quote in measurements", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n20,0,20,180,1.0\n30,0,30,180,\"0.5\n40,0,40,180,0.4\n50,0,50,180,0.5\n", 3, &["d.csv:3:", "quote"]),
+        eval_geometry("CR-only line ends, bad value on line 3", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\r30,0,30,180\r40,0,x,180\r"), 3, &["g.csv:3:", "theta_r_deg"]),
+        eval_geometry("a line over 1 MiB", [b"theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n".to_vec(), vec![b'1'; (1 << 20) + 1]].concat(), 3, &["g.csv:2:", "longer than"]),
+        eval_geometry("a 1 MB header name", [vec![b'k'; 1 << 19], b",theta_i_deg\n".to_vec()].concat(), 3, &["g.csv", "missing column(s)"]),
+        eval_material("a 1 MB TOML key", &format!("{} = 1\n", "k".repeat(1 << 20)), 3, &["m.toml:1:", "unknown key"]),
+        eval_material("dotted TOML key", "n = 1.5\nsigma_deg = 10\na.b = 1\n", 3, &["m.toml:3:", "dotted keys"]),
+        eval_material("CR-only material file", "n = 1.5\rsigma_deg = 10\rrho_d = -1\r", 3, &["m.toml:3:", "rho_d"]),
+        // Issue 18: measured data outside its physical range, outliers named as data.
+        fit_data("negative BRDF", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n20,0,20,180,1.0\n30,0,30,180,-0.5\n40,0,40,180,0.4\n50,0,50,180,0.5\n", 3, &["d.csv:3:", "`brdf`", "≥ 0"]),
+        fit_data("DoLP of 5", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,dolp\n20,0,20,180,0.1\n30,0,30,180,5\n40,0,40,180,0.4\n50,0,50,180,0.5\n", 3, &["d.csv:3:", "`dolp`", "[0, 1]"]),
+        fit_data("an outlier of 1e300", "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n20,0,20,180,1.0\n30,0,30,180,0.5\n40,0,40,180,1e300\n50,0,50,180,0.5\n", 3, &["d.csv:4:", "`brdf`", "outlier"]),
+        // Issue 18: azimuths beyond ±1e8° lose every digit of the angle.
+        eval_geometry("azimuth 1e17", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,1e17,30,180\n"), 3, &["g.csv:2:", "phi_i_deg", "1e8"]),
+        eval_geometry("azimuth -1e300", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,-1e300\n"), 3, &["g.csv:2:", "phi_r_deg", "1e8"]),
+        case("views azimuth 1e17", vec![("s.toml", t(SCENE)), ("v.csv", t("theta_r_deg,phi_r_deg\n30,1e17\n"))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--input", "{d}/v.csv", "--output", "{d}/out.csv"], 3, &["v.csv:2:", "phi_r_deg"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),

@@ -13,4 +13,5 @@ mod golden;
 mod lut;
 mod map;
 mod outputs;
+mod presets;
 mod spectral;

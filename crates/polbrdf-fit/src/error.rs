@@ -25,6 +25,22 @@ pub enum FitError {
     /// The model, at some parameter values, is invalid (e.g. a start value out of range).
     #[error("invalid model parameters: {0}")]
     Model(#[from] polbrdf::Error),
+    /// More extra starts than [`crate::MAX_EXTRA_STARTS`].
+    #[error("{0} extra starts: at most {max} (each start is a full fit)", max = crate::MAX_EXTRA_STARTS)]
+    TooManyStarts(usize),
+    /// A measurement is so large (value/σ beyond 1e100) that χ² overflows: an outlier or a
+    /// unit error in the data, not in the parameters. `index` counts the measurements given.
+    #[error("measurement {index} ({observable} = {value:e}, σ = {sigma}) is too large for a least-squares fit: |value/σ| > 1e100 makes χ² overflow (an outlier or a unit error in the data?)")]
+    DataOutOfRange {
+        /// Index of the measurement in the data given to the fit.
+        index: usize,
+        /// Its observable's name.
+        observable: String,
+        /// Its value.
+        value: f64,
+        /// Its σ (1 when none was given).
+        sigma: f64,
+    },
     /// The zero-bistatic inversion has too few usable backscatter points.
     #[error("zero-bistatic inversion: {0}")]
     ZeroBistatic(String),

@@ -176,6 +176,9 @@ pub struct Residual {
 /// The outcome of a fit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitResult {
+    /// Warnings about the data (e.g. degenerate data whose uncertainties are not meaningful);
+    /// empty for a well-posed fit.
+    pub warnings: Vec<String>,
     /// Free parameters, in the order given.
     pub params: Vec<Param>,
     /// Their fitted values.
@@ -518,6 +521,10 @@ pub fn fit(
             parameters: p,
         });
     }
+    if opts.extra_starts > crate::MAX_EXTRA_STARTS {
+        return Err(FitError::TooManyStarts(opts.extra_starts));
+    }
+    check_measurements(data)?;
     // Group consecutive measurements at the same geometry (and wavelength).
     let mut geoms: Vec<Geometry> = Vec::new();
     let mut element_wl: Vec<Option<f64>> = Vec::new();
@@ -775,7 +782,9 @@ pub fn fit(
             sigma: d.sigma.unwrap_or(sigma_scale),
         })
         .collect();
+    let warnings = degenerate_data_warnings(data, p);
     Ok(FitResult {
+        warnings,
         params: free.to_vec(),
         values: x,
         stderr,
@@ -794,6 +803,62 @@ pub fn fit(
         spec,
         residuals,
     })
+}
+
+/// Refuses a measurement whose `|value/σ|` (σ = 1 when none is given) exceeds
+/// [`crate::MAX_WEIGHTED_VALUE`], where its squared residual could overflow χ²: such a value
+/// is an outlier or a unit error in the data (checked by [`fit`] before anything else).
+///
+/// # Errors
+/// [`FitError::DataOutOfRange`] naming the first such measurement by its index in `data`.
+pub fn check_measurements(data: &[Measurement]) -> Result<(), FitError> {
+    for (index, d) in data.iter().enumerate() {
+        let sigma = d.sigma.unwrap_or(1.0);
+        let w = d.value / sigma;
+        if !w.is_finite() || w.abs() > crate::MAX_WEIGHTED_VALUE {
+            return Err(FitError::DataOutOfRange {
+                index,
+                observable: d.observable.name(),
+                value: d.value,
+                sigma,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Warnings about data that cannot give meaningful uncertainties: fewer distinct measurements
+/// (geometry, wavelength and observable) than free parameters + 1 — e.g. one row repeated — so
+/// that the fit is exactly determined and χ², the residual scaling and the covariance say
+/// nothing about the parameters' uncertainty.
+fn degenerate_data_warnings(data: &[Measurement], free: usize) -> Vec<String> {
+    let key = |d: &Measurement| {
+        let g = d.geometry;
+        (
+            [g.theta_i(), g.phi_i(), g.theta_r(), g.phi_r()].map(f64::to_bits),
+            d.wavelength_um.map(f64::to_bits),
+            d.observable.name(),
+        )
+    };
+    let distinct: std::collections::HashSet<_> = data.iter().map(key).collect();
+    let geometries: std::collections::HashSet<_> = data.iter().map(|d| key(d).0).collect();
+    let mut w = Vec::new();
+    if distinct.len() <= free {
+        w.push(format!(
+            "the {} measurement(s) hold only {} distinct one(s) (same geometry, wavelength and \
+             quantity repeated) for {free} free parameter(s): the fit is exactly determined and \
+             the uncertainties are not meaningful",
+            data.len(),
+            distinct.len()
+        ));
+    } else if geometries.len() == 1 && data.len() > 1 {
+        w.push(
+            "every measurement is at the same geometry: the parameters are determined by that \
+             one geometry only, and their correlations and uncertainties may not be meaningful"
+                .to_string(),
+        );
+    }
+    w
 }
 
 /// One wavelength's fit of [`fit_per_wavelength`].

@@ -17,7 +17,15 @@ pub mod zbs;
 
 pub use error::FitError;
 pub use fit::{
-    fit, fit_per_wavelength, Bound, Evaluator, FitOptions, FitResult, Measurement, Observable,
-    Residual, WavelengthFit,
+    check_measurements, fit, fit_per_wavelength, Bound, Evaluator, FitOptions, FitResult,
+    Measurement, Observable, Residual, WavelengthFit,
 };
 pub use params::Param;
+
+/// The most extra starts a fit accepts ([`FitOptions::extra_starts`]): each is a full
+/// Levenberg–Marquardt run, and their start values are allocated up front.
+pub const MAX_EXTRA_STARTS: usize = 10_000;
+
+/// The largest `|value/σ|` (or `|value|` without σ) of a measurement: beyond it a squared
+/// residual could overflow χ² ([`FitError::DataOutOfRange`]).
+pub const MAX_WEIGHTED_VALUE: f64 = 1e100;

@@ -1,4 +1,5 @@
 //! Tests of the inversion (one test binary).
 
+mod diagnostics;
 mod general;
 mod zero_bistatic;

@@ -2,7 +2,7 @@
 
 use crate::error::{Error, Result};
 use polbrdf::{Geometry, Mueller, Stokes};
-use std::io::Read;
+use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
 /// The four angle columns every geometry file must have (degrees, any order).
@@ -37,7 +37,8 @@ pub struct GeometryTable {
 /// The optional wavelength column of geometry and measurement files (µm).
 pub const WAVELENGTH_COLUMN: &str = "wavelength_um";
 
-/// The bytes of `path`, or of standard input for `-`.
+/// The bytes of `path`, or of standard input for `-`, read whole (for the small files only:
+/// material, scene and refractive-index files; every CSV reader streams, [`CsvReader`]).
 pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     let read_err = |source| Error::Read {
         path: path.to_path_buf(),
@@ -52,97 +53,413 @@ pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     }
 }
 
-/// A CSV file as text fields.
-struct RawTable {
-    headers: Vec<String>,
-    rows: Vec<Vec<String>>,
-    /// 1-based line of each row.
-    lines: Vec<usize>,
-    /// Column index of each required column.
-    index: Vec<usize>,
+/// The longest line a CSV reader accepts (bytes, line end excluded): a header of 10⁵ columns
+/// fits; a longer line is an error naming it, so that no single line can exhaust memory.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// The most characters of one name (CSV column, TOML key) quoted in a message; longer names are
+/// cut with `…` so that every message stays under the project's 2 kB bound.
+pub const MAX_NAME_IN_MESSAGE: usize = 80;
+
+/// The most characters of a list of names (the header, the keys of a table) in a message.
+pub const MAX_LIST_IN_MESSAGE: usize = 1000;
+
+/// `name` for a message: at most [`MAX_NAME_IN_MESSAGE`] characters.
+pub fn short_name(name: &str) -> String {
+    cut(name, MAX_NAME_IN_MESSAGE)
 }
 
-/// Parses CSV text whose header names columns, with `required` columns among them; `path` is
-/// used in messages only.
-fn parse_table(bytes: &[u8], path: &Path, required: &[&str]) -> Result<RawTable> {
-    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
-    if let Err(e) = std::str::from_utf8(bytes) {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        return Err(Error::Syntax {
-            path: path.to_path_buf(),
-            line,
-            message: "not valid UTF-8 text (is this a CSV file?)".into(),
-        });
+/// `names` joined by `, ` for a message: at most [`MAX_LIST_IN_MESSAGE`] characters, each name
+/// shortened, and the number of names left out said.
+pub fn short_list<S: AsRef<str>>(names: &[S]) -> String {
+    let mut out = String::new();
+    for (i, n) in names.iter().enumerate() {
+        let n = short_name(n.as_ref());
+        if out.len() + n.len() > MAX_LIST_IN_MESSAGE {
+            out.push_str(&format!(" … and {} more", names.len() - i));
+            break;
+        }
+        if i > 0 {
+            out.push_str(", ");
+        }
+        out.push_str(&n);
     }
-    let mut reader = csv::ReaderBuilder::new()
-        .trim(csv::Trim::Headers)
-        .flexible(false)
-        .from_reader(bytes);
-    // Physical line of a byte offset (the csv crate's own line count skips blank lines).
-    let line_at = |byte: u64| {
-        bytes[..(byte as usize).min(bytes.len())]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1
-    };
-    let syntax = |e: csv::Error| {
-        let line = e.position().map_or(1, |p| line_at(p.byte()));
-        let message = match e.kind() {
-            csv::ErrorKind::UnequalLengths {
-                expected_len, len, ..
-            } => format!("row has {len} fields, the header has {expected_len}"),
-            _ => e.to_string(),
+    out
+}
+
+/// `text` with every lone `\r` (an old Mac line end) made a `\n`, so that the TOML readers
+/// count lines as the CSV readers do (`\n`, `\r\n` or `\r`); `\r\n` is kept.
+pub(crate) fn lone_cr_to_lf(text: &str) -> std::borrow::Cow<'_, str> {
+    let b = text.as_bytes();
+    let lone = |i: usize| b[i] == b'\r' && b.get(i + 1) != Some(&b'\n');
+    if !(0..b.len()).any(lone) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let out: Vec<u8> = (0..b.len())
+        .map(|i| if lone(i) { b'\n' } else { b[i] })
+        .collect();
+    // Only ASCII bytes were replaced by ASCII bytes.
+    std::borrow::Cow::Owned(String::from_utf8(out).expect("still UTF-8"))
+}
+
+/// A message from another crate (the TOML parser's, which may quote a key), cut to 1000
+/// characters.
+pub(crate) fn short_message(m: &str) -> String {
+    cut(m, MAX_LIST_IN_MESSAGE)
+}
+
+fn cut(s: &str, max: usize) -> String {
+    if s.chars().count() > max {
+        s.chars().take(max).collect::<String>() + "…"
+    } else {
+        s.to_string()
+    }
+}
+
+/// A streaming CSV reader for the project's numeric tables: one record per physical line.
+///
+/// Lines end at `\n`, `\r\n` or a lone `\r` (old Mac files), a UTF-8 BOM is skipped, blank lines
+/// are skipped (and counted), fields are separated by `,` and may be quoted (`"a,b"`, `""` for a
+/// quote). A quoted field never spans lines: none of our files has a newline inside a field, so
+/// a quote still open at the end of a line is an error naming that line (the `csv` crate would
+/// read the rest of the file into that field and silently drop every later row). Memory is
+/// bounded by one line ([`MAX_LINE_BYTES`]), whatever the file's length.
+pub struct CsvReader<R> {
+    src: R,
+    path: PathBuf,
+    headers: Vec<String>,
+    /// Physical line number of the last line read.
+    line: usize,
+    /// The raw bytes of the current line.
+    raw: Vec<u8>,
+    /// The unquoted text of the current record's fields, and each field's range in it.
+    text: String,
+    fields: Vec<std::ops::Range<usize>>,
+    /// A lone `\r` ended the last line: a `\n` right after it belongs to it.
+    after_cr: bool,
+}
+
+impl<R> std::fmt::Debug for CsvReader<R> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CsvReader")
+            .field("path", &self.path)
+            .field("line", &self.line)
+            .finish_non_exhaustive()
+    }
+}
+
+/// One record of a [`CsvReader`].
+#[derive(Debug, Clone, Copy)]
+pub struct Record<'a> {
+    /// 1-based physical line.
+    pub line: usize,
+    text: &'a str,
+    fields: &'a [std::ops::Range<usize>],
+}
+
+impl<'a> Record<'a> {
+    /// Field `k` (unquoted, untrimmed).
+    pub fn get(&self, k: usize) -> &'a str {
+        &self.text[self.fields[k].clone()]
+    }
+
+    /// Number of fields.
+    pub fn len(&self) -> usize {
+        self.fields.len()
+    }
+
+    /// True for a record without fields (never returned by the reader).
+    pub fn is_empty(&self) -> bool {
+        self.fields.is_empty()
+    }
+
+    /// Every field, in order.
+    pub fn iter(&self) -> impl Iterator<Item = &'a str> + '_ {
+        self.fields.iter().map(|r| &self.text[r.clone()])
+    }
+}
+
+impl CsvReader<Box<dyn BufRead>> {
+    /// Opens `path` (`-` = standard input, read as a stream) and reads its header.
+    ///
+    /// # Errors
+    /// [`Error::Read`] when it cannot be opened; else as [`CsvReader::new`].
+    pub fn open(path: &Path) -> Result<Self> {
+        let src: Box<dyn BufRead> = if path.as_os_str() == "-" {
+            Box::new(std::io::stdin().lock())
+        } else {
+            let file = std::fs::File::open(path).map_err(|source| Error::Read {
+                path: path.to_path_buf(),
+                source,
+            })?;
+            Box::new(std::io::BufReader::with_capacity(1 << 16, file))
         };
-        Error::Syntax {
+        Self::new(src, path)
+    }
+}
+
+impl<R: BufRead> CsvReader<R> {
+    /// Reads the header line from `src`; `path` is used in messages only.
+    ///
+    /// # Errors
+    /// [`Error::File`] for an empty file; [`Error::Syntax`] for bad UTF-8, an unclosed quote,
+    /// a line over [`MAX_LINE_BYTES`] or a column named twice.
+    pub fn new(src: R, path: &Path) -> Result<Self> {
+        let mut r = Self {
+            src,
             path: path.to_path_buf(),
-            line,
+            headers: Vec::new(),
+            line: 0,
+            raw: Vec::new(),
+            text: String::new(),
+            fields: Vec::new(),
+            after_cr: false,
+        };
+        // The header is the first line that is not blank.
+        while r.next_line()? && r.fields.is_empty() {}
+        if !r.fields.is_empty() {
+            r.headers = r
+                .fields
+                .iter()
+                .map(|f| r.text[f.clone()].trim().to_string())
+                .collect();
+        }
+        if r.headers.is_empty() || r.headers.iter().all(String::is_empty) {
+            return Err(r.file_error("empty file: expected a header line naming the columns"));
+        }
+        let mut seen = std::collections::HashSet::with_capacity(r.headers.len());
+        for h in &r.headers {
+            if !seen.insert(h.as_str()) {
+                return Err(Error::Syntax {
+                    path: r.path.clone(),
+                    line: r.line,
+                    message: format!("column `{}` appears twice in the header", short_name(h)),
+                });
+            }
+        }
+        Ok(r)
+    }
+
+    /// The header's names (surrounding whitespace trimmed).
+    pub fn headers(&self) -> &[String] {
+        &self.headers
+    }
+
+    /// The file name used in messages.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    fn file_error(&self, message: &str) -> Error {
+        Error::File {
+            path: self.path.clone(),
+            message: message.to_string(),
+        }
+    }
+
+    /// The column index of each of `required`.
+    ///
+    /// # Errors
+    /// [`Error::File`] naming the missing columns (and the header, shortened).
+    pub fn require(&self, required: &[&str]) -> Result<Vec<usize>> {
+        check_header(&self.headers, &self.path, required)
+    }
+
+    /// The next record, or `None` at the end of the file.
+    ///
+    /// # Errors
+    /// [`Error::Read`]; [`Error::Syntax`] naming the line for bad UTF-8, an unclosed quote, a
+    /// line over [`MAX_LINE_BYTES`] or a field count different from the header's.
+    pub fn next_record(&mut self) -> Result<Option<Record<'_>>> {
+        loop {
+            if !self.next_line()? {
+                return Ok(None);
+            }
+            if self.fields.is_empty() {
+                continue; // a blank line
+            }
+            if self.fields.len() != self.headers.len() {
+                return Err(Error::Syntax {
+                    path: self.path.clone(),
+                    line: self.line,
+                    message: format!(
+                        "row has {} fields, the header has {}",
+                        self.fields.len(),
+                        self.headers.len()
+                    ),
+                });
+            }
+            return Ok(Some(Record {
+                line: self.line,
+                text: &self.text,
+                fields: &self.fields,
+            }));
+        }
+    }
+
+    fn syntax(&self, message: String) -> Error {
+        Error::Syntax {
+            path: self.path.clone(),
+            line: self.line,
             message,
         }
-    };
-    let headers: Vec<String> = reader
-        .headers()
-        .map_err(syntax)?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let index = check_header(&headers, path, required)?;
-    let mut rows = Vec::new();
-    let mut lines = Vec::new();
-    // Count newlines incrementally: rows come in file order.
-    let (mut seen_byte, mut seen_line) = (0usize, 1usize);
-    for record in reader.records() {
-        let record = record.map_err(syntax)?;
-        let mut byte = record
-            .position()
-            .map_or(0, |p| p.byte() as usize)
-            .min(bytes.len());
-        // The recorded position can sit before skipped blank lines.
-        while byte < bytes.len() && matches!(bytes[byte], b'\n' | b'\r') {
-            byte += 1;
-        }
-        seen_line += bytes[seen_byte..byte]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count();
-        seen_byte = byte;
-        lines.push(seen_line);
-        rows.push(record.iter().map(str::to_string).collect());
     }
-    Ok(RawTable {
-        headers,
-        rows,
-        lines,
-        index,
+
+    /// Reads one physical line into `raw` and splits it into `fields` (none for a blank line);
+    /// false at the end of the file.
+    fn next_line(&mut self) -> Result<bool> {
+        self.raw.clear();
+        let mut ended = false;
+        let mut any = false;
+        while !ended {
+            let buf = self.src.fill_buf().map_err(|source| Error::Read {
+                path: self.path.clone(),
+                source,
+            })?;
+            if buf.is_empty() {
+                break;
+            }
+            let mut start = 0;
+            if self.after_cr {
+                self.after_cr = false;
+                if buf[0] == b'\n' {
+                    start = 1;
+                }
+            }
+            let (take, used) = match buf[start..].iter().position(|&b| b == b'\n' || b == b'\r') {
+                Some(i) => {
+                    ended = true;
+                    if buf[start + i] == b'\r' {
+                        self.after_cr = true;
+                    }
+                    (start + i, start + i + 1)
+                }
+                None => (buf.len(), buf.len()),
+            };
+            any |= take > start || ended;
+            if self.raw.len() + (take - start) > MAX_LINE_BYTES {
+                self.line += 1;
+                return Err(self.syntax(format!(
+                    "line longer than {MAX_LINE_BYTES} bytes (is this a CSV file?)"
+                )));
+            }
+            self.raw.extend_from_slice(&buf[start..take]);
+            self.src.consume(used);
+        }
+        if !any {
+            return Ok(false);
+        }
+        self.line += 1;
+        let mut bytes = &self.raw[..];
+        if self.line == 1 {
+            bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+        }
+        let line = std::str::from_utf8(bytes)
+            .map_err(|_| self.syntax("not valid UTF-8 text (is this a CSV file?)".into()))?;
+        self.text.clear();
+        self.fields.clear();
+        if line.is_empty() {
+            return Ok(true);
+        }
+        // Fields as the csv crate reads them: a field that starts with `"` is quoted up to the
+        // next lone `"` (`""` is a quote), anything after that up to the comma is kept as is.
+        let mut chars = line.chars().peekable();
+        loop {
+            let begin = self.text.len();
+            if chars.peek() == Some(&'"') {
+                chars.next();
+                let mut closed = false;
+                while let Some(c) = chars.next() {
+                    if c == '"' {
+                        if chars.peek() == Some(&'"') {
+                            chars.next();
+                            self.text.push('"');
+                        } else {
+                            closed = true;
+                            break;
+                        }
+                    } else {
+                        self.text.push(c);
+                    }
+                }
+                if !closed {
+                    return Err(self.syntax(
+                        "a quote opened on this line is not closed on it (a field cannot span \
+                         lines)"
+                            .into(),
+                    ));
+                }
+            }
+            let mut more = false;
+            for c in chars.by_ref() {
+                if c == ',' {
+                    more = true;
+                    break;
+                }
+                self.text.push(c);
+            }
+            self.fields.push(begin..self.text.len());
+            if !more {
+                break;
+            }
+        }
+        Ok(true)
+    }
+}
+
+/// Reads every record of `reader`, calling `row` on each: the streaming loop of the numeric
+/// readers.
+fn for_each_record<R: BufRead>(
+    reader: &mut CsvReader<R>,
+    mut row: impl FnMut(&Record<'_>) -> Result<()>,
+) -> Result<()> {
+    while let Some(r) = reader.next_record()? {
+        row(&r)?;
+    }
+    Ok(())
+}
+
+/// Parses a number in a CSV field (surrounding whitespace allowed).
+pub(crate) fn parse_number(path: &Path, line: usize, column: &str, field: &str) -> Result<f64> {
+    field.trim().parse::<f64>().map_err(|_| Error::Field {
+        path: path.to_path_buf(),
+        line,
+        field: column.to_string(),
+        message: format!("expected a number, got {:?}", cut(field, 40)),
     })
 }
 
-/// Checks a table's header: not empty, no column twice, every `required` column present;
-/// returns the index of each required column.
+/// A number in a message: as it would be written, in exponent form when very large or small
+/// (as the core's messages show values).
+pub(crate) fn show(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// Reads a geometry CSV (`-` = standard input): a header holding `theta_i_deg, phi_i_deg,
+/// theta_r_deg, phi_r_deg` in any order, other columns kept as they are.
+///
+/// # Errors
+/// [`Error::Read`], [`Error::Syntax`] (bad CSV or UTF-8, with the line), [`Error::File`] (empty
+/// file, missing columns), [`Error::Field`] (a non-number or an invalid angle, with line and
+/// column).
+pub fn read_geometry_csv(path: &Path) -> Result<GeometryTable> {
+    geometry_chunk(&mut CsvReader::open(path)?, usize::MAX)
+}
+
+/// Parses the bytes of a geometry CSV; `path` is used in messages only.
+///
+/// # Errors
+/// As [`read_geometry_csv`], except [`Error::Read`].
+pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
+    geometry_chunk(&mut CsvReader::new(bytes, path)?, usize::MAX)
+}
+
+/// Checks a table's header (CSV or `.npy`): not empty, no column twice, every `required` column
+/// present; returns the index of each required column.
 pub(crate) fn check_header(
     headers: &[String],
     path: &Path,
@@ -157,19 +474,19 @@ pub(crate) fn check_header(
             ),
         });
     }
-    for (i, h) in headers.iter().enumerate() {
-        if headers[..i].contains(h) {
-            return Err(Error::Syntax {
-                path: path.to_path_buf(),
-                line: 1,
-                message: format!("column `{h}` appears twice in the header"),
-            });
-        }
+    let mut seen = std::collections::HashSet::with_capacity(headers.len());
+    if let Some(h) = headers.iter().find(|h| !seen.insert(h.as_str())) {
+        return Err(Error::Syntax {
+            path: path.to_path_buf(),
+            line: 1,
+            message: format!("column `{}` appears twice in the header", short_name(h)),
+        });
     }
+    let position = |r: &str| headers.iter().position(|h| h == r);
     let missing: Vec<&str> = required
         .iter()
         .copied()
-        .filter(|r| !headers.iter().any(|h| h == r))
+        .filter(|r| position(r).is_none())
         .collect();
     if !missing.is_empty() {
         return Err(Error::File {
@@ -177,88 +494,24 @@ pub(crate) fn check_header(
             message: format!(
                 "missing column(s) {} (the header has: {})",
                 missing.join(", "),
-                headers.join(", ")
+                short_list(headers)
             ),
         });
     }
     Ok(required
         .iter()
-        .map(|r| headers.iter().position(|h| h == r).expect("checked above"))
+        .map(|r| position(r).expect("checked above"))
         .collect())
 }
 
-/// Parses a number in a CSV field (surrounding whitespace allowed).
-pub(crate) fn parse_number(path: &Path, line: usize, column: &str, field: &str) -> Result<f64> {
-    field.trim().parse::<f64>().map_err(|_| Error::Field {
-        path: path.to_path_buf(),
-        line,
-        field: column.to_string(),
-        message: format!("expected a number, got {:?}", truncate(field)),
-    })
+/// The geometry of a record, from the angle columns at `idx` (in [`ANGLE_COLUMNS`] order).
+pub(crate) fn record_geometry(path: &Path, r: &Record<'_>, idx: &[usize]) -> Result<Geometry> {
+    row_geometry(path, r.line, [0, 1, 2, 3].map(|k| r.get(idx[k])))
 }
 
-/// A number in a message: as it would be written, in exponent form when very large or small
-/// (as the core's messages show values).
-pub(crate) fn show(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
-        format!("{v}")
-    } else {
-        format!("{v:e}")
-    }
-}
-
-fn truncate(s: &str) -> String {
-    if s.chars().count() > 40 {
-        s.chars().take(40).collect::<String>() + "…"
-    } else {
-        s.to_string()
-    }
-}
-
-/// Reads a geometry CSV (`-` = standard input): a header holding `theta_i_deg, phi_i_deg,
-/// theta_r_deg, phi_r_deg` in any order, other columns kept as they are.
-///
-/// # Errors
-/// [`Error::Read`], [`Error::Syntax`] (bad CSV or UTF-8, with the line), [`Error::File`] (empty
-/// file, missing columns), [`Error::Field`] (a non-number or an invalid angle, with line and
-/// column).
-pub fn read_geometry_csv(path: &Path) -> Result<GeometryTable> {
-    parse_geometry_csv(&read_all(path)?, path)
-}
-
-/// Parses the bytes of a geometry CSV; `path` is used in messages only.
-///
-/// # Errors
-/// As [`read_geometry_csv`], except [`Error::Read`].
-pub fn parse_geometry_csv(bytes: &[u8], path: &Path) -> Result<GeometryTable> {
-    let RawTable {
-        headers,
-        rows,
-        lines,
-        index: idx,
-    } = parse_table(bytes, path, &ANGLE_COLUMNS)?;
-    let mut geometries = Vec::with_capacity(rows.len());
-    for (row, &line) in rows.iter().zip(&lines) {
-        let fields = [0, 1, 2, 3].map(|k| row[idx[k]].as_str());
-        geometries.push(row_geometry(path, line, fields)?);
-    }
-    let wavelengths = match headers.iter().position(|h| h == WAVELENGTH_COLUMN) {
-        None => None,
-        Some(c) => Some(
-            rows.iter()
-                .zip(&lines)
-                .map(|(row, &line)| row_wavelength(path, line, &row[c]))
-                .collect::<Result<Vec<f64>>>()?,
-        ),
-    };
-    Ok(GeometryTable {
-        path: path.to_path_buf(),
-        headers,
-        rows,
-        lines,
-        geometries,
-        wavelengths,
-    })
+/// The wavelength of a record (µm, finite and > 0), from column `c`.
+pub(crate) fn record_wavelength(path: &Path, r: &Record<'_>, c: usize) -> Result<f64> {
+    row_wavelength(path, r.line, r.get(c))
 }
 
 /// The geometry of a row from its four angle fields (in [`ANGLE_COLUMNS`] order, degrees).
@@ -310,6 +563,43 @@ pub(crate) fn check_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> 
     }
 }
 
+/// The next at most `max_rows` rows of a geometry CSV as a table (no rows at the end of the
+/// file): the chunked form of [`read_geometry_csv`], whose memory is bounded by the chunk.
+/// Open the reader with [`CsvReader::open`] or [`CsvReader::new`].
+///
+/// # Errors
+/// As [`read_geometry_csv`].
+pub fn geometry_chunk<R: BufRead>(
+    reader: &mut CsvReader<R>,
+    max_rows: usize,
+) -> Result<GeometryTable> {
+    let idx = reader.require(&ANGLE_COLUMNS)?;
+    let wl = reader.headers.iter().position(|h| h == WAVELENGTH_COLUMN);
+    let path = reader.path.clone();
+    let headers = reader.headers.clone();
+    let (mut rows, mut lines, mut geometries) = (Vec::new(), Vec::new(), Vec::new());
+    let mut wavelengths = wl.map(|_| Vec::new());
+    while rows.len() < max_rows {
+        let Some(r) = reader.next_record()? else {
+            break;
+        };
+        geometries.push(record_geometry(&path, &r, &idx)?);
+        if let (Some(c), Some(w)) = (wl, wavelengths.as_mut()) {
+            w.push(record_wavelength(&path, &r, c)?);
+        }
+        lines.push(r.line);
+        rows.push(r.iter().map(str::to_string).collect());
+    }
+    Ok(GeometryTable {
+        path,
+        headers,
+        rows,
+        lines,
+        geometries,
+        wavelengths,
+    })
+}
+
 /// The columns of a band file: the wavelength (µm) and the relative spectral response.
 pub const BAND_COLUMNS: [&str; 2] = ["wavelength_um", "response"];
 
@@ -320,7 +610,7 @@ pub const BAND_COLUMNS: [&str; 2] = ["wavelength_um", "response"];
 /// [`Error::Field`] naming the file, the line and the column for a malformed or invalid value;
 /// [`Error::File`] for a missing column, fewer than two rows, or a response zero everywhere.
 pub fn read_band_csv(path: &Path) -> Result<polbrdf::Band> {
-    parse_band_csv(&read_all(path)?, path)
+    band_from(CsvReader::open(path)?)
 }
 
 /// Parses band CSV bytes ([`read_band_csv`]); `path` is used in messages only.
@@ -328,15 +618,30 @@ pub fn read_band_csv(path: &Path) -> Result<polbrdf::Band> {
 /// # Errors
 /// As [`read_band_csv`].
 pub fn parse_band_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::Band> {
-    let RawTable {
-        rows, lines, index, ..
-    } = parse_table(bytes, path, &BAND_COLUMNS)?;
-    let mut wl = Vec::with_capacity(rows.len());
-    let mut response = Vec::with_capacity(rows.len());
-    for (row, &line) in rows.iter().zip(&lines) {
-        wl.push(parse_number(path, line, BAND_COLUMNS[0], &row[index[0]])?);
-        response.push(parse_number(path, line, BAND_COLUMNS[1], &row[index[1]])?);
-    }
+    band_from(CsvReader::new(bytes, path)?)
+}
+
+fn band_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<polbrdf::Band> {
+    let index = reader.require(&BAND_COLUMNS)?;
+    let path = reader.path.clone();
+    let path = path.as_path();
+    let (mut wl, mut response, mut lines) = (Vec::new(), Vec::new(), Vec::new());
+    for_each_record(&mut reader, |r| {
+        wl.push(parse_number(
+            path,
+            r.line,
+            BAND_COLUMNS[0],
+            r.get(index[0]),
+        )?);
+        response.push(parse_number(
+            path,
+            r.line,
+            BAND_COLUMNS[1],
+            r.get(index[1]),
+        )?);
+        lines.push(r.line);
+        Ok(())
+    })?;
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -375,7 +680,7 @@ pub const SKY_PROFILE_COLUMNS: [&str; 2] = ["zenith_deg", "radiance"];
 /// finite and ≥ 0); [`Error::File`] for a missing column, fewer than two rows, or a table that
 /// does not start at 0° and end at 90°.
 pub fn read_sky_profile_csv(path: &Path) -> Result<polbrdf::analysis::sky::ZenithProfile> {
-    parse_sky_profile_csv(&read_all(path)?, path)
+    sky_profile_from(CsvReader::open(path)?)
 }
 
 /// Parses sky profile CSV bytes ([`read_sky_profile_csv`]); `path` is used in messages only.
@@ -386,25 +691,32 @@ pub fn parse_sky_profile_csv(
     bytes: &[u8],
     path: &Path,
 ) -> Result<polbrdf::analysis::sky::ZenithProfile> {
-    let RawTable {
-        rows, lines, index, ..
-    } = parse_table(bytes, path, &SKY_PROFILE_COLUMNS)?;
-    let mut zenith = Vec::with_capacity(rows.len());
-    let mut radiance = Vec::with_capacity(rows.len());
-    for (row, &line) in rows.iter().zip(&lines) {
+    sky_profile_from(CsvReader::new(bytes, path)?)
+}
+
+fn sky_profile_from<R: BufRead>(
+    mut reader: CsvReader<R>,
+) -> Result<polbrdf::analysis::sky::ZenithProfile> {
+    let index = reader.require(&SKY_PROFILE_COLUMNS)?;
+    let path = reader.path.clone();
+    let path = path.as_path();
+    let (mut zenith, mut radiance, mut lines) = (Vec::new(), Vec::new(), Vec::new());
+    for_each_record(&mut reader, |r| {
         zenith.push(parse_number(
             path,
-            line,
+            r.line,
             SKY_PROFILE_COLUMNS[0],
-            &row[index[0]],
+            r.get(index[0]),
         )?);
         radiance.push(parse_number(
             path,
-            line,
+            r.line,
             SKY_PROFILE_COLUMNS[1],
-            &row[index[1]],
+            r.get(index[1]),
         )?);
-    }
+        lines.push(r.line);
+        Ok(())
+    })?;
     polbrdf::analysis::sky::ZenithProfile::new(zenith, radiance)
         .map_err(|e| row_error(path, &lines, e))
 }
@@ -427,7 +739,7 @@ pub const SKY_TABLE_COLUMNS: [&str; 6] = ["theta_deg", "phi_deg", "s0", "s1", "s
 /// file without rows, a grid with a hole (naming the missing node and the grid) or zenith
 /// angles that do not span 0° to 90°.
 pub fn read_sky_table_csv(path: &Path) -> Result<polbrdf::analysis::sky::TableSky> {
-    parse_sky_table_csv(&read_all(path)?, path)
+    sky_table_from(CsvReader::open(path)?)
 }
 
 /// Parses sky table CSV bytes ([`read_sky_table_csv`]); `path` is used in messages only.
@@ -435,27 +747,28 @@ pub fn read_sky_table_csv(path: &Path) -> Result<polbrdf::analysis::sky::TableSk
 /// # Errors
 /// As [`read_sky_table_csv`].
 pub fn parse_sky_table_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::analysis::sky::TableSky> {
-    let RawTable {
-        rows, lines, index, ..
-    } = parse_table(bytes, path, &SKY_TABLE_COLUMNS)?;
+    sky_table_from(CsvReader::new(bytes, path)?)
+}
+
+fn sky_table_from<R: BufRead>(
+    mut reader: CsvReader<R>,
+) -> Result<polbrdf::analysis::sky::TableSky> {
+    let index = reader.require(&SKY_TABLE_COLUMNS)?;
+    let path = reader.path.clone();
+    let path = path.as_path();
     let field = |line: usize, column: &str, message: String| Error::Field {
         path: path.to_path_buf(),
         line,
         field: column.to_string(),
         message,
     };
-    if rows.is_empty() {
-        return Err(Error::File {
-            path: path.to_path_buf(),
-            message: "no rows (the file has a header but no sky nodes)".into(),
-        });
-    }
     // Every row's values, its angles checked (−0 read as 0).
-    let mut values = Vec::with_capacity(rows.len());
-    for (row, &line) in rows.iter().zip(&lines) {
+    let (mut values, mut lines) = (Vec::new(), Vec::new());
+    for_each_record(&mut reader, |r| {
+        let line = r.line;
         let mut v = [0.0; 6];
         for (k, x) in v.iter_mut().enumerate() {
-            *x = parse_number(path, line, SKY_TABLE_COLUMNS[k], &row[index[k]])? + 0.0;
+            *x = parse_number(path, line, SKY_TABLE_COLUMNS[k], r.get(index[k]))? + 0.0;
         }
         if !(v[0].is_finite() && (0.0..=90.0).contains(&v[0])) {
             return Err(field(
@@ -476,6 +789,14 @@ pub fn parse_sky_table_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::analysi
             ));
         }
         values.push(v);
+        lines.push(line);
+        Ok(())
+    })?;
+    if values.is_empty() {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: "no rows (the file has a header but no sky nodes)".into(),
+        });
     }
     let distinct = |k: usize| {
         let mut a: Vec<f64> = values.iter().map(|v| v[k]).collect();
@@ -533,7 +854,7 @@ pub fn parse_sky_table_csv(bytes: &[u8], path: &Path) -> Result<polbrdf::analysi
                 nt * np,
                 missing,
                 if missing == 1 { "is" } else { "are" },
-                rows.len()
+                values.len()
             ),
         });
     }
@@ -584,7 +905,7 @@ pub const VIEW_COLUMNS: [&str; 2] = ["theta_r_deg", "phi_r_deg"];
 /// a view zenith angle outside [0°, 90°) or a non-finite azimuth; [`Error::File`] for a missing
 /// column or a file without rows.
 pub fn read_views_csv(path: &Path) -> Result<Vec<(f64, f64)>> {
-    parse_views_csv(&read_all(path)?, path)
+    views_from(CsvReader::open(path)?)
 }
 
 /// Parses view-direction CSV bytes ([`read_views_csv`]); `path` is used in messages only.
@@ -592,25 +913,24 @@ pub fn read_views_csv(path: &Path) -> Result<Vec<(f64, f64)>> {
 /// # Errors
 /// As [`read_views_csv`].
 pub fn parse_views_csv(bytes: &[u8], path: &Path) -> Result<Vec<(f64, f64)>> {
-    let RawTable {
-        rows, lines, index, ..
-    } = parse_table(bytes, path, &VIEW_COLUMNS)?;
-    if rows.is_empty() {
-        return Err(Error::File {
-            path: path.to_path_buf(),
-            message: "no view directions (the file has a header but no rows)".into(),
-        });
-    }
+    views_from(CsvReader::new(bytes, path)?)
+}
+
+fn views_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<Vec<(f64, f64)>> {
+    let index = reader.require(&VIEW_COLUMNS)?;
+    let path = reader.path.clone();
+    let path = path.as_path();
     let field = |line: usize, column: &str, message: String| Error::Field {
         path: path.to_path_buf(),
         line,
         field: column.to_string(),
         message,
     };
-    let mut views = Vec::with_capacity(rows.len());
-    for (row, &line) in rows.iter().zip(&lines) {
-        let theta = parse_number(path, line, VIEW_COLUMNS[0], &row[index[0]])?;
-        let phi = parse_number(path, line, VIEW_COLUMNS[1], &row[index[1]])?;
+    let mut views = Vec::new();
+    for_each_record(&mut reader, |r| {
+        let line = r.line;
+        let theta = parse_number(path, line, VIEW_COLUMNS[0], r.get(index[0]))?;
+        let phi = parse_number(path, line, VIEW_COLUMNS[1], r.get(index[1]))?;
         if !(0.0..90.0).contains(&theta) {
             return Err(field(
                 line,
@@ -618,14 +938,26 @@ pub fn parse_views_csv(bytes: &[u8], path: &Path) -> Result<Vec<(f64, f64)>> {
                 format!("{theta}: the view zenith angle must lie in [0, 90) degrees"),
             ));
         }
-        if !phi.is_finite() {
+        if !(phi.is_finite() && phi.abs() <= polbrdf::MAX_AZIMUTH_DEG) {
             return Err(field(
                 line,
                 VIEW_COLUMNS[1],
-                format!("{phi}: must be finite"),
+                format!(
+                    "{}: must be finite and within ±{}° (beyond it too few digits of the angle \
+                     remain)",
+                    show(phi),
+                    show(polbrdf::MAX_AZIMUTH_DEG)
+                ),
             ));
         }
         views.push((theta, phi));
+        Ok(())
+    })?;
+    if views.is_empty() {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: "no view directions (the file has a header but no rows)".into(),
+        });
     }
     Ok(views)
 }

@@ -20,7 +20,7 @@ pub mod write;
 pub use csv_io::{
     parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_sky_table_csv,
     parse_views_csv, read_band_csv, read_geometry_csv, read_sky_profile_csv, read_sky_table_csv,
-    read_views_csv, CsvTable, GeometryTable,
+    read_views_csv, CsvReader, CsvTable, GeometryTable,
 };
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};

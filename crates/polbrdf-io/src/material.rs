@@ -30,11 +30,20 @@ fn line_of(text: &str, pos: usize) -> usize {
 /// missing required key.
 pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = &*crate::csv_io::lone_cr_to_lf(text);
     let table: BTreeMap<Spanned<String>, Spanned<Value>> =
         toml::from_str(text).map_err(|e| Error::Syntax {
             path: path.to_path_buf(),
             line: e.span().map_or(1, |s| line_of(text, s.start)),
-            message: e.message().trim().to_string(),
+            // Valid TOML that is no flat table of keys: a dotted key or a table, which the
+            // spanned reader reports in serde's words.
+            message: if toml::from_str::<toml::Table>(text).is_ok() {
+                "dotted keys (`a.b = …`) and tables are not allowed in a material file: every \
+                 key is a plain name (`n = 1.5`)"
+                    .into()
+            } else {
+                crate::csv_io::short_message(e.message().trim())
+            },
         })?;
     let mut lines: BTreeMap<&str, usize> = BTreeMap::new();
     let field_err = |key: &str, line: usize, message: String| Error::Field {
@@ -53,7 +62,7 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
         let name = key.get_ref().as_str();
         let Some(&known) = KEYS.iter().find(|k| **k == name) else {
             return Err(field_err(
-                name,
+                &crate::csv_io::short_name(name),
                 line,
                 format!("unknown key (known keys: {})", KEYS.join(", ")),
             ));
@@ -163,36 +172,53 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
     Ok(spec)
 }
 
-/// Loads `arg` as a material: the path of a TOML file if such a file exists, else a preset
-/// name (`polbrdf::presets`).
+/// Loads `arg` as a material: the path of a TOML file when it contains a `/` or ends in
+/// `.toml` ([`names_a_file`]), else a preset name (`polbrdf::presets`) — whatever files exist
+/// in the working directory.
 ///
 /// # Errors
 /// As [`parse_material`]; [`Error::Read`] if the file cannot be read; [`Error::File`] if `arg`
-/// is neither an existing file nor a preset.
+/// is not a preset (saying so when a file of that name exists).
 pub fn load_material(arg: &str) -> Result<MaterialSpec> {
     let path = Path::new(arg);
-    if path.exists() {
-        let bytes = std::fs::read(path).map_err(|source| Error::Read {
+    if !names_a_file(arg) {
+        return polbrdf::preset(arg).map_err(|_| Error::File {
             path: path.to_path_buf(),
-            source,
-        })?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let pos = e.utf8_error().valid_up_to();
-            Error::Syntax {
-                path: path.to_path_buf(),
-                line: line_of(&String::from_utf8_lossy(e.as_bytes()), pos),
-                message: "file is not valid UTF-8 text".into(),
-            }
-        })?;
-        return parse_material(&text, path);
+            message: format!(
+                "not a preset material (presets: {}){}",
+                polbrdf::presets::names().join(", "),
+                if path.exists() {
+                    format!(
+                        "; a file of that name exists: write ./{} to read it (a material \
+                         argument is a file when it contains a `/` or ends in `.toml`)",
+                        crate::csv_io::short_name(arg)
+                    )
+                } else {
+                    String::new()
+                }
+            ),
+        });
     }
-    polbrdf::preset(arg).map_err(|_| Error::File {
+    let bytes = std::fs::read(path).map_err(|source| Error::Read {
         path: path.to_path_buf(),
-        message: format!(
-            "no such file, and not a preset material (presets: {})",
-            polbrdf::presets::names().join(", ")
-        ),
-    })
+        source,
+    })?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let pos = e.utf8_error().valid_up_to();
+        Error::Syntax {
+            path: path.to_path_buf(),
+            line: line_of(&String::from_utf8_lossy(e.as_bytes()), pos),
+            message: "file is not valid UTF-8 text".into(),
+        }
+    })?;
+    parse_material(&text, path)
+}
+
+/// Whether a material argument names a file rather than a preset: it contains a path separator
+/// or ends in `.toml` (so a file or folder in the working directory named like a preset never
+/// shadows it).
+pub fn names_a_file(arg: &str) -> bool {
+    arg.contains('/') || arg.contains(std::path::MAIN_SEPARATOR) || arg.ends_with(".toml")
 }
 
 /// A material file for `spec` that [`parse_material`] reads back to the same spec: every key

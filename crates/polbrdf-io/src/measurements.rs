@@ -1,9 +1,13 @@
 //! Measurement CSV for fitting: the four angle columns plus measured quantities, each optionally
 //! with a `sigma_<column>` 1-σ uncertainty.
 
-use crate::csv_io::parse_number;
+use crate::csv_io::{
+    parse_number, record_geometry, record_wavelength, short_name, CsvReader, ANGLE_COLUMNS,
+    WAVELENGTH_COLUMN,
+};
 use crate::error::{Error, Result};
 use polbrdf::Geometry;
+use std::io::BufRead;
 use std::path::{Path, PathBuf};
 
 /// Names of the quantities a measurement file may hold: `brdf`, `dolp`, `brdf_s`, `brdf_p`
@@ -56,7 +60,7 @@ pub struct MeasurementTable {
 /// line, and [`Error::File`] when no measured column is present or a `sigma_` column has no
 /// quantity.
 pub fn read_measurements_csv(path: &Path) -> Result<MeasurementTable> {
-    parse_measurements_csv(&crate::csv_io::read_all(path)?, path)
+    measurements_from(CsvReader::open(path)?)
 }
 
 /// Parses the bytes of a measurement CSV; `path` is used in messages only.
@@ -64,55 +68,137 @@ pub fn read_measurements_csv(path: &Path) -> Result<MeasurementTable> {
 /// # Errors
 /// As [`read_measurements_csv`], except [`Error::Read`].
 pub fn parse_measurements_csv(bytes: &[u8], path: &Path) -> Result<MeasurementTable> {
-    let crate::GeometryTable {
-        headers,
-        rows,
-        lines,
-        geometries,
-        wavelengths,
-        ..
-    } = crate::csv_io::parse_geometry_csv(bytes, path)?;
+    measurements_from(CsvReader::new(bytes, path)?)
+}
+
+/// Memory a measurement table holds per row, in bytes, at most: the line number, the geometry,
+/// the wavelength and, per measured column, a value and an uncertainty. The rows are read as a
+/// stream and kept as columns of numbers (no text), so a file of `N` rows with `c` measured
+/// columns needs about `N·(8 + size_of::<Geometry>() + 8 + 32·c)` bytes.
+pub fn bytes_per_row(measured_columns: usize) -> usize {
+    size_of::<usize>()
+        + size_of::<Geometry>()
+        + size_of::<f64>()
+        + measured_columns * 2 * size_of::<Option<f64>>()
+}
+
+/// How many σ a measured value may lie outside its physical range (noise): 5σ, which Gaussian
+/// noise exceeds in 3·10⁻⁷ of the values.
+pub const NOISE_MARGIN_SIGMAS: f64 = 5.0;
+
+/// The physical range of a measured quantity: every BRDF-like quantity (`brdf`, `brdf_s`,
+/// `brdf_p`, `m00`: a reflected radiance per unit irradiance) is ≥ 0, a degree of linear
+/// polarization lies in [0, 1]; the other Mueller entries may have either sign. With an
+/// uncertainty `sigma`, a value within [`NOISE_MARGIN_SIGMAS`]·σ outside the range is noise and
+/// kept; without one, the range is exact.
+fn check_physical(name: &str, v: f64, sigma: Option<f64>) -> std::result::Result<(), String> {
+    let margin = sigma.map_or(0.0, |s| NOISE_MARGIN_SIGMAS * s);
+    let note = if sigma.is_some() {
+        ", also allowing 5σ of noise"
+    } else {
+        " (no σ given: no allowance for noise)"
+    };
+    match name {
+        "brdf" | "brdf_s" | "brdf_p" | "m00" if v < -margin => Err(format!(
+            "{v}: a BRDF is ≥ 0 (sr⁻¹){note}; a negative value is not a measurement of a \
+             reflectance"
+        )),
+        "dolp" if !(-margin..=1.0 + margin).contains(&v) => Err(format!(
+            "{v}: a degree of linear polarization lies in [0, 1]{note}"
+        )),
+        _ => Ok(()),
+    }
+}
+
+fn measurements_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<MeasurementTable> {
+    let idx = reader.require(&ANGLE_COLUMNS)?;
+    let path = reader.path().to_path_buf();
+    let path = path.as_path();
+    let headers = reader.headers().to_vec();
     let measurable = measurable_columns();
     for h in &headers {
         if let Some(q) = h.strip_prefix("sigma_") {
             if !headers.iter().any(|x| x == q) {
                 return Err(Error::File {
                     path: path.to_path_buf(),
-                    message: format!("column `{h}` has no column `{q}` to go with"),
+                    message: format!(
+                        "column `{}` has no column `{}` to go with",
+                        short_name(h),
+                        short_name(q)
+                    ),
                 });
             }
         }
     }
-    let mut columns = Vec::new();
-    for (ci, h) in headers.iter().enumerate() {
-        if !measurable.contains(h) {
-            continue;
+    // (column index, sigma column index) of each measured column, in file order.
+    let measured: Vec<(usize, Option<usize>)> = headers
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| measurable.contains(h))
+        .map(|(ci, h)| {
+            let sigma = format!("sigma_{h}");
+            (ci, headers.iter().position(|x| *x == sigma))
+        })
+        .collect();
+    if measured.is_empty() {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "no measured column: expected at least one of {}",
+                measurable.join(", ")
+            ),
+        });
+    }
+    let wl = headers.iter().position(|h| h == WAVELENGTH_COLUMN);
+    let mut columns: Vec<MeasuredColumn> = measured
+        .iter()
+        .map(|&(ci, si)| MeasuredColumn {
+            name: headers[ci].clone(),
+            values: Vec::new(),
+            sigmas: si.map(|_| Vec::new()),
+        })
+        .collect();
+    let (mut lines, mut geometries) = (Vec::new(), Vec::new());
+    let mut wavelengths = wl.map(|_| Vec::new());
+    while let Some(r) = reader.next_record()? {
+        let line = r.line;
+        geometries.push(record_geometry(path, &r, &idx)?);
+        if let (Some(c), Some(w)) = (wl, wavelengths.as_mut()) {
+            w.push(record_wavelength(path, &r, c)?);
         }
-        let si = headers.iter().position(|x| *x == format!("sigma_{h}"));
-        let mut values = Vec::with_capacity(rows.len());
-        let mut sigmas = si.map(|_| Vec::with_capacity(rows.len()));
-        for (row, &line) in rows.iter().zip(&lines) {
-            let cell = |k: usize, name: &str| -> Result<Option<f64>> {
-                let text = row[k].trim();
-                if text.is_empty() {
-                    return Ok(None);
-                }
-                let v = parse_number(path, line, name, text)?;
-                if !v.is_finite() {
-                    return Err(Error::Field {
-                        path: path.to_path_buf(),
-                        line,
-                        field: name.to_string(),
-                        message: format!("must be finite, got {v}"),
-                    });
-                }
-                Ok(Some(v))
-            };
-            let v = cell(ci, h)?;
-            values.push(v);
-            if let (Some(si), Some(sig)) = (si, sigmas.as_mut()) {
+        lines.push(line);
+        let cell = |k: usize| -> Result<Option<f64>> {
+            let name = &headers[k];
+            let text = r.get(k).trim();
+            if text.is_empty() {
+                return Ok(None);
+            }
+            let v = parse_number(path, line, name, text)?;
+            if !v.is_finite() {
+                return Err(Error::Field {
+                    path: path.to_path_buf(),
+                    line,
+                    field: name.to_string(),
+                    message: format!("must be finite, got {v}"),
+                });
+            }
+            Ok(Some(v))
+        };
+        for (column, &(ci, si)) in columns.iter_mut().zip(&measured) {
+            let h = &headers[ci];
+            let v = cell(ci)?;
+            let s = si.map(cell).transpose()?.flatten();
+            if let Some(v) = v {
+                check_physical(h, v, s.filter(|s| *s > 0.0)).map_err(|message| Error::Field {
+                    path: path.to_path_buf(),
+                    line,
+                    field: h.clone(),
+                    message,
+                })?;
+            }
+            column.values.push(v);
+            if let (Some(si), Some(sig)) = (si, column.sigmas.as_mut()) {
                 let name = &headers[si];
-                let s = cell(si, name)?;
                 match (v, s) {
                     (Some(_), None) => {
                         return Err(Error::Field {
@@ -135,20 +221,6 @@ pub fn parse_measurements_csv(bytes: &[u8], path: &Path) -> Result<MeasurementTa
                 sig.push(s);
             }
         }
-        columns.push(MeasuredColumn {
-            name: h.clone(),
-            values,
-            sigmas,
-        });
-    }
-    if columns.is_empty() {
-        return Err(Error::File {
-            path: path.to_path_buf(),
-            message: format!(
-                "no measured column: expected at least one of {}",
-                measurable.join(", ")
-            ),
-        });
     }
     Ok(MeasurementTable {
         path: path.to_path_buf(),

@@ -56,7 +56,10 @@
 //! table is rows of `KEYS` and a function; a new sky model is a row of `SKY_MODELS`, its keys
 //! in `KEYS` and an arm of the match in `sky`.
 
-use crate::csv_io::{read_all, read_band_csv, read_sky_profile_csv, read_sky_table_csv, show};
+use crate::csv_io::{
+    read_all, read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_message, short_name,
+    show,
+};
 use crate::error::{Error, Result};
 use crate::material::load_material;
 use polbrdf::analysis::scene::Sun;
@@ -445,7 +448,7 @@ impl<'a> Doc<'a> {
                     c.unwrap_or('?')
                 )
             } else {
-                e.message().trim().to_string()
+                short_message(e.message().trim())
             },
         }
     }
@@ -464,23 +467,25 @@ impl<'a> Doc<'a> {
             let is_table = matches!(value, Value::Table(_));
             let (field, message) = match table {
                 None if is_table => (
-                    name.clone(),
+                    short_name(name),
                     format!(
-                        "unknown table [{name}] (known tables: {})",
+                        "unknown table [{}] (known tables: {})",
+                        short_name(name),
                         tables_list(&keys_of(None))
                     ),
                 ),
                 None => (
-                    name.clone(),
+                    short_name(name),
                     format!(
                         "unknown key (known: `wavelength_um` and the tables {})",
                         tables_list(&keys_of(None))
                     ),
                 ),
                 Some(t) => (
-                    format!("{t}.{name}"),
+                    format!("{}.{}", short_name(t), short_name(name)),
                     format!(
-                        "unknown key in [{t}] (known keys: {})",
+                        "unknown key in [{}] (known keys: {})",
+                        short_name(t),
                         keys_of(Some(t)).join(", ")
                     ),
                 ),
@@ -747,8 +752,9 @@ fn object(doc: &Doc<'_>, keys: &ObjectKeys) -> Result<SceneObject> {
     })
 }
 
-/// The material `arg` of `key`: a material file relative to the scene file's folder if there
-/// is one, else a preset name (as [`load_material`]); with its display name.
+/// The material `arg` of `key`: a material file relative to the scene file's folder when it
+/// contains a `/` or ends in `.toml`, else a preset name (as [`load_material`]); with its
+/// display name.
 fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String)> {
     if arg.is_empty() {
         return Err(doc.error(
@@ -756,23 +762,20 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
             "expected a material file or a preset name, got an empty string",
         ));
     }
-    let file = doc.resolve(arg);
-    let spec = if file.is_file() {
+    // A file when the argument contains a `/` or ends in `.toml`, else a preset (as
+    // [`load_material`]: a file named like a preset never shadows it).
+    let spec = if crate::material::names_a_file(arg) {
+        let file = doc.resolve(arg);
         match file.to_str() {
-            Some(f) => load_material(f),
+            Some(f) if crate::material::names_a_file(f) => load_material(f),
+            Some(f) => load_material(&format!("./{f}")),
             None => Err(Error::File {
                 path: file.clone(),
                 message: "the path is not valid UTF-8".into(),
             }),
         }
     } else {
-        polbrdf::preset(arg).map_err(|_| Error::File {
-            path: file.clone(),
-            message: format!(
-                "no such file, and not a preset material (presets: {})",
-                polbrdf::presets::names().join(", ")
-            ),
-        })
+        load_material(arg)
     }
     .map_err(|e| doc.error(key, e.to_string()))?;
     let name = spec.name.clone().unwrap_or_else(|| {
@@ -981,6 +984,7 @@ fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
 /// [`Error::File`] when neither `wavelength_um` nor `[band]` is given.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let text = &*crate::csv_io::lone_cr_to_lf(text);
     let doc = Doc::parse(text, path)?;
     let spectrum = spectrum(&doc)?;
     let sun = sun(&doc)?;

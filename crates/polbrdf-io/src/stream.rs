@@ -10,14 +10,13 @@
 //! naming its line and column.
 
 use crate::csv_io::{
-    fmt_f64_into, parse_number, result_columns, row_geometry, row_wavelength, ANGLE_COLUMNS,
-    WAVELENGTH_COLUMN,
+    fmt_f64_into, parse_number, result_columns, row_geometry, row_wavelength, CsvReader,
+    ANGLE_COLUMNS, WAVELENGTH_COLUMN,
 };
 use crate::error::{Error, Result};
 use crate::npy::{NpyReader, NpyWriter};
 use crate::write::Output;
 use polbrdf::{Geometry, Mueller};
-use std::collections::VecDeque;
 use std::io::{BufReader, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 
@@ -78,72 +77,10 @@ impl GeometryChunk {
     }
 }
 
-/// A reader that strips a leading UTF-8 BOM and remembers where line breaks are, so that
-/// rows read by the csv crate are given their physical lines (as
-/// [`crate::read_geometry_csv`] gives them).
-struct LineTracker<R> {
-    inner: R,
-    offset: u64,
-    /// Positions of `\r` (false) and `\n` (true) not yet passed by a row.
-    marks: VecDeque<(u64, bool)>,
-    /// `\n` before the first mark.
-    lf_before: usize,
-    started: bool,
-}
-
-impl<R: Read> LineTracker<R> {
-    /// The line of a row starting at `start` (blank lines before it skipped, as the csv crate
-    /// does), forgetting the breaks before it.
-    fn row_line(&mut self, start: u64) -> usize {
-        while let Some(&(p, lf)) = self.marks.front() {
-            if p >= start {
-                break;
-            }
-            self.lf_before += usize::from(lf);
-            self.marks.pop_front();
-        }
-        let mut extra = 0;
-        for (pos, &(p, lf)) in (start..).zip(&self.marks) {
-            if p != pos {
-                break;
-            }
-            extra += usize::from(lf);
-        }
-        1 + self.lf_before + extra
-    }
-
-    /// The line of byte `at` (not before the last row's start).
-    fn line_at(&self, at: u64) -> usize {
-        1 + self.lf_before + self.marks.iter().filter(|(p, lf)| *lf && *p < at).count()
-    }
-}
-
-impl<R: Read> Read for LineTracker<R> {
-    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        let mut n = self.inner.read(buf)?;
-        if !self.started && n > 0 {
-            // A BOM could straddle reads only for a 1- or 2-byte read; the csv crate reads
-            // kilobytes.
-            self.started = true;
-            if buf[..n].starts_with(b"\xef\xbb\xbf") {
-                buf.copy_within(3..n, 0);
-                n -= 3;
-            }
-        }
-        for (i, &b) in buf[..n].iter().enumerate() {
-            if b == b'\n' || b == b'\r' {
-                self.marks.push_back((self.offset + i as u64, b == b'\n'));
-            }
-        }
-        self.offset += n as u64;
-        Ok(n)
-    }
-}
-
 type Source = Box<dyn Read + Send>;
 
 enum Src {
-    Csv(Box<csv::Reader<LineTracker<Source>>>),
+    Csv(Box<CsvReader<BufReader<Source>>>),
     Npy(NpyReader<BufReader<Source>>),
 }
 
@@ -197,23 +134,8 @@ impl GeometryReader {
                 (r.header().columns.clone(), Src::Npy(r))
             }
             Format::Csv => {
-                let tracker = LineTracker {
-                    inner: src,
-                    offset: 0,
-                    marks: VecDeque::new(),
-                    lf_before: 0,
-                    started: false,
-                };
-                let mut rdr = csv::ReaderBuilder::new()
-                    .trim(csv::Trim::Headers)
-                    .flexible(false)
-                    .buffer_capacity(1 << 16)
-                    .from_reader(tracker);
-                let headers: Vec<String> = match rdr.headers() {
-                    Ok(h) => h.iter().map(str::to_string).collect(),
-                    Err(e) => return Err(csv_error(path, rdr.get_ref(), e)),
-                };
-                (headers, Src::Csv(Box::new(rdr)))
+                let r = CsvReader::new(BufReader::with_capacity(1 << 16, src), path)?;
+                (r.headers().to_vec(), Src::Csv(Box::new(r)))
             }
         };
         let angles = crate::csv_io::check_header(&headers, path, &ANGLE_COLUMNS)?;
@@ -272,15 +194,11 @@ impl GeometryReader {
                 let mut records = Vec::with_capacity(max.min(CHUNK_ROWS));
                 let mut lines = Vec::with_capacity(max.min(CHUNK_ROWS));
                 while records.len() < max {
-                    let mut rec = csv::StringRecord::new();
-                    match rdr.read_record(&mut rec) {
-                        Ok(true) => {}
-                        Ok(false) => break,
-                        Err(e) => return Err(csv_error(&path, rdr.get_ref(), e)),
-                    }
-                    let start = rec.position().map_or(0, csv::Position::byte);
-                    lines.push(rdr.get_mut().row_line(start));
-                    records.push(rec);
+                    let Some(r) = rdr.next_record()? else {
+                        break;
+                    };
+                    lines.push(r.line);
+                    records.push(r.iter().collect::<csv::StringRecord>());
                 }
                 // Parsed in parallel; the first bad row (in file order) is the error.
                 use rayon::prelude::*;
@@ -358,29 +276,6 @@ fn numeric_geometry(path: &Path, line: usize, deg: [f64; 4]) -> Result<Geometry>
 
 fn checked_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> {
     crate::csv_io::check_wavelength(path, line, v)
-}
-
-/// A csv crate error as [`Error::Syntax`] at its physical line.
-fn csv_error<R: Read>(path: &Path, tracker: &LineTracker<R>, e: csv::Error) -> Error {
-    let line = e.position().map_or(1, |p| tracker.line_at(p.byte()));
-    let message = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => format!("row has {len} fields, the header has {expected_len}"),
-        csv::ErrorKind::Utf8 { .. } => "not valid UTF-8 text (is this a CSV file?)".into(),
-        csv::ErrorKind::Io(err) => {
-            return Error::Read {
-                path: path.to_path_buf(),
-                source: std::io::Error::new(err.kind(), err.to_string()),
-            }
-        }
-        _ => e.to_string(),
-    };
-    Error::Syntax {
-        path: path.to_path_buf(),
-        line,
-        message,
-    }
 }
 
 /// The 19 numbers `eval` appends for one pBRDF: brdf, dolp, aolp_deg, then F row-major.

@@ -1,6 +1,7 @@
 //! Tests of the file formats (one test binary).
 
 mod csv_files;
+mod csv_limits;
 mod material_files;
 mod npy_files;
 mod refractive;

@@ -1105,7 +1105,7 @@ fn cases() -> Vec<Case> {
             b"wavelength_um = 10\n[target]\nmaterial = \"pant\"\n",
             Some(3),
             Some("target.material"),
-            &["{d}/pant: no such file, and not a preset material", "paint"],
+            &["pant: not a preset material", "paint"],
         ),
         with_files(
             &[("m.toml", b"n = 1.5\nsigma = 5\n")],

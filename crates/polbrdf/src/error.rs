@@ -90,6 +90,9 @@ pub enum AngleProblem {
     SourceBelowHorizon,
     /// A view direction at or below the horizon where one above it is needed.
     ViewBelowHorizon,
+    /// An azimuth beyond ±[`crate::MAX_AZIMUTH_DEG`]: too large for its digits to hold the
+    /// angle (at 1e17° not one digit of the angle modulo 360° is left).
+    AzimuthTooLarge,
 }
 
 impl AngleProblem {
@@ -106,6 +109,10 @@ impl AngleProblem {
             }
             (AngleProblem::ViewBelowHorizon, _) => {
                 "the view direction must be above the horizon: 0 ≤ zenith angle < 90°"
+            }
+            (AngleProblem::AzimuthTooLarge, _) => {
+                "an azimuth must lie within ±1e8° (±1.75e6 rad): beyond it too few digits of the \
+                 angle remain"
             }
         }
     }

@@ -63,3 +63,8 @@ pub use optics::stokes::Stokes;
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 pub struct ReadmeDoctests;
+
+/// The largest azimuth magnitude accepted anywhere (degrees; `MAX_AZIMUTH_DEG.to_radians()` in
+/// radians): 10⁸° keeps the angle modulo 360° to about 1e-8°, while at 1e17° no digit of it is
+/// left. Beyond it an azimuth is an error ([`AngleProblem::AzimuthTooLarge`]).
+pub const MAX_AZIMUTH_DEG: f64 = 1e8;

@@ -94,13 +94,17 @@ impl Illumination {
                 problem: AngleProblem::SourceBelowHorizon,
             });
         }
-        if !phi_i.is_finite() {
+        if !(phi_i.is_finite() && phi_i.abs() <= crate::MAX_AZIMUTH_DEG.to_radians()) {
             return Err(Error::InvalidAngle {
                 name: azimuth,
                 value: phi_i * unit,
                 degrees,
                 index: None,
-                problem: AngleProblem::NotFinite,
+                problem: if phi_i.is_finite() {
+                    AngleProblem::AzimuthTooLarge
+                } else {
+                    AngleProblem::NotFinite
+                },
             });
         }
         Ok(Self {

@@ -673,6 +673,8 @@ pub fn observed_radiance(
     for (i, &(t, p)) in views.iter().enumerate() {
         let (name, value, problem) = if !p.is_finite() {
             ("phi_r", p, crate::error::AngleProblem::NotFinite)
+        } else if p.abs() > crate::MAX_AZIMUTH_DEG.to_radians() {
+            ("phi_r", p, crate::error::AngleProblem::AzimuthTooLarge)
         } else if !(t.is_finite() && (0.0..FRAC_PI_2).contains(&t)) {
             ("theta_r", t, crate::error::AngleProblem::ViewBelowHorizon)
         } else {

@@ -53,7 +53,12 @@ pub(crate) fn check_azimuth(
     degrees: bool,
     index: Option<usize>,
 ) -> Result<f64> {
-    if value.is_finite() {
+    let max = if degrees {
+        crate::MAX_AZIMUTH_DEG
+    } else {
+        crate::MAX_AZIMUTH_DEG.to_radians()
+    };
+    if value.is_finite() && value.abs() <= max {
         Ok(value)
     } else {
         Err(Error::InvalidAngle {
@@ -61,7 +66,11 @@ pub(crate) fn check_azimuth(
             value,
             degrees,
             index,
-            problem: AngleProblem::NotFinite,
+            problem: if value.is_finite() {
+                AngleProblem::AzimuthTooLarge
+            } else {
+                AngleProblem::NotFinite
+            },
         })
     }
 }
@@ -209,4 +218,32 @@ pub fn direction(theta: f64, phi: f64) -> [f64; 3] {
     let (st, ct) = theta.sin_cos();
     let (sp, cp) = phi.sin_cos();
     [st * cp, st * sp, ct]
+}
+
+#[cfg(test)]
+mod azimuth_bound {
+    use super::*;
+
+    #[test]
+    fn azimuths_beyond_the_bound_lose_their_digits_and_are_refused() {
+        for phi in [1e17, -1e300, 1.000001e8] {
+            let e = Geometry::from_degrees(30.0, phi, 30.0, 180.0).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    Error::InvalidAngle {
+                        problem: AngleProblem::AzimuthTooLarge,
+                        ..
+                    }
+                ),
+                "{e}"
+            );
+            assert!(Geometry::new(0.5, 0.0, 0.5, phi).is_err());
+        }
+        // At the bound the angle is still exact to 1e-8° (1e8 = 277777·360 + 280).
+        let g = Geometry::from_degrees(30.0, 0.0, 30.0, -crate::MAX_AZIMUTH_DEG).unwrap();
+        let near = Geometry::from_degrees(30.0, 0.0, 30.0, -280.0).unwrap();
+        assert!((g.phi_r().sin() - near.phi_r().sin()).abs() < 1e-9);
+        assert!(Geometry::new(0.5, crate::MAX_AZIMUTH_DEG.to_radians(), 0.5, 0.0).is_ok());
+    }
 }
