@@ -11,4 +11,5 @@ mod eval;
 mod fit;
 mod golden;
 mod map;
+mod pbsdf;
 mod spectral;
