@@ -115,9 +115,10 @@ fn round_trip_recovers_the_parameters() {
         ] {
             let got = p[name]["value"].as_f64().unwrap();
             // The cells hold the model at the stored (float32) nodes, rounded to float32: the
-            // fit recovers the parameters to ~1e-9 relative.
+            // fit recovers the parameters to ~1e-6 relative (before the export used the float32
+            // nodes, ρ_D came back 2e-3 off).
             assert!(
-                (got - want).abs() < 1e-7 * want,
+                (got - want).abs() < 1e-5 * want,
                 "{nm} nm {name}: {got} vs {want}"
             );
         }
