@@ -20,6 +20,10 @@ pub struct Args<'a> {
     pub plot: Option<&'a Path>,
     pub per_wavelength: bool,
     pub index_out: Option<&'a Path>,
+    /// `.pbsdf` tables: keep every n-th node along each axis (`None`: automatic).
+    pub subsample: Option<usize>,
+    /// `.pbsdf` tables: leave out the cells whose matrix is not physically realizable.
+    pub exclude_inadmissible: bool,
 }
 
 /// Runs `polbrdf fit`.
@@ -29,6 +33,9 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         .flatten()
         .collect();
     polbrdf_io::check_distinct(&[args.data, Path::new(args.material)], &outputs)?;
+    if crate::measured::is_pbsdf(args.data) {
+        return crate::measured::run(args);
+    }
     let base = polbrdf_io::load_material(args.material)?;
     let free = Param::parse_list(args.free)?;
     crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
@@ -120,7 +127,7 @@ fn matrix(m: &[Vec<f64>]) -> Value {
 }
 
 /// The `fit.json` document (contract in the README).
-fn to_json(r: &FitResult, data: &Path) -> Value {
+pub(crate) fn to_json(r: &FitResult, data: &Path) -> Value {
     let mut params = Map::new();
     for (k, p) in r.params.iter().enumerate() {
         let entry = match &r.bounds[k] {
@@ -288,7 +295,7 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
 
 /// Normalized residuals `(model − data)/σ` against the measurement number, one panel per kind of
 /// measurement (BRDF, DoLP, s/p BRDF, Mueller entries), with ±1σ and ±2σ guides.
-fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure {
+pub(crate) fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure {
     use polbrdf_plot::{Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
     let kind = |o: &Observable| match o {
         Observable::Brdf => "BRDF",

@@ -12,11 +12,13 @@ mod contrast;
 mod emission;
 mod error;
 mod eval;
+mod export;
 mod fit;
 mod limits;
 mod lut;
 mod map;
 mod materials;
+mod measured;
 mod output;
 mod radiance;
 mod reproduce;
@@ -95,6 +97,14 @@ enum Command {
         /// YAML file (tabulated nk), usable as `index = "FILE.yml"` in a material file.
         #[arg(long, value_name = "index.yml", requires = "per_wavelength")]
         index_out: Option<PathBuf>,
+        /// With a .pbsdf table: keep every N-th node along each of φ_d, θ_d, θ_h (default: the
+        /// smallest N keeping at most 20 000 cells).
+        #[arg(long, value_name = "N")]
+        subsample: Option<usize>,
+        /// With a .pbsdf table: leave out the cells whose matrix is not physically realizable
+        /// (they are always counted and reported).
+        #[arg(long)]
+        exclude_inadmissible: bool,
     },
     /// Regenerate the paper's Figs. 2–5 and Table 1 (PNG, SVG, CSV) with report.md, which
     /// checks each of the paper's claims against the computation.
@@ -169,6 +179,9 @@ enum Command {
         #[command(flatten)]
         spectral: spectrum::SpectralArgs,
     },
+    /// Write a material as a Mitsuba 3 `measured_polarized` table (.pbsdf), which the stock
+    /// plugin renders (docs/model.md §20).
+    Export(export::Args),
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -231,6 +244,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
             plot,
             per_wavelength,
             index_out,
+            subsample,
+            exclude_inadmissible,
         } => fit::run(&fit::Args {
             material: &material,
             data: &data,
@@ -242,6 +257,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
             plot: plot.as_deref(),
             per_wavelength,
             index_out: index_out.as_deref(),
+            subsample,
+            exclude_inadmissible,
         }),
         Command::Reproduce { out } => reproduce::run(&out),
         Command::Check {
@@ -258,5 +275,6 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Bench(args) => bench::run(&args),
         Command::Lut { config, out } => lut::run(&config, &out),
         Command::Spectrum(args) => sweep::run(&args),
+        Command::Export(args) => export::run(&args),
     }
 }

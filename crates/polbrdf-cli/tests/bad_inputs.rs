@@ -282,7 +282,88 @@ fn lut_config(what: &'static str, tail: &str, code: i32, says: &[&'static str]) 
     )
 }
 
+/// A TensorFile built by hand (independent of polbrdf's writer): fields `(name, dtype code,
+/// shape, data)` packed right after the header.
+fn tensor(fields: &[(&str, u8, Vec<u64>, Vec<u8>)]) -> Vec<u8> {
+    let header: usize = 18
+        + fields
+            .iter()
+            .map(|f| 2 + f.0.len() + 2 + 1 + 8 + 8 * f.2.len())
+            .sum::<usize>();
+    let mut out = b"tensor_file\0".to_vec();
+    out.extend([1u8, 0]);
+    out.extend((fields.len() as u32).to_le_bytes());
+    let mut at = header as u64;
+    for (name, dtype, shape, data) in fields {
+        out.extend((name.len() as u16).to_le_bytes());
+        out.extend(name.as_bytes());
+        out.extend((shape.len() as u16).to_le_bytes());
+        out.push(*dtype);
+        out.extend(at.to_le_bytes());
+        for d in shape {
+            out.extend(d.to_le_bytes());
+        }
+        at += data.len() as u64;
+    }
+    for f in fields {
+        out.extend(&f.3);
+    }
+    out
+}
+
+fn f32s(v: &[f32]) -> Vec<u8> {
+    v.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+/// A valid 3×3×3-cell, 5-band table (zeros), with `edit` applied to its fields.
+fn pbsdf(edit: impl FnOnce(&mut Vec<(&'static str, u8, Vec<u64>, Vec<u8>)>)) -> Vec<u8> {
+    let mut fields = vec![
+        ("phi_d", 10u8, vec![1, 3], f32s(&[-3.0, 0.0, 3.0])),
+        ("theta_d", 10, vec![1, 3], f32s(&[0.0, 0.7, 1.5])),
+        ("theta_h", 10, vec![1, 3], f32s(&[0.0, 0.7, 1.5])),
+        (
+            "wvls",
+            3,
+            vec![5],
+            [450u16, 500, 550, 600, 650]
+                .iter()
+                .flat_map(|x| x.to_le_bytes())
+                .collect(),
+        ),
+        ("M", 10, vec![3, 3, 3, 5, 4, 4], vec![0u8; 27 * 5 * 16 * 4]),
+    ];
+    edit(&mut fields);
+    tensor(&fields)
+}
+
+/// `fit` of the table `t.pbsdf` holding `bytes`.
+fn fit_pbsdf(what: &'static str, bytes: Vec<u8>, says: &[&'static str]) -> Case {
+    case(
+        what,
+        vec![("t.pbsdf", bytes)],
+        &[
+            "fit",
+            "--material",
+            "paint",
+            "--data",
+            "{d}/t.pbsdf",
+            "--free",
+            "n",
+            "--output",
+            "{d}/out.json",
+        ],
+        3,
+        says,
+    )
+}
+
 const LUT_AXES: &str = "theta_r_deg = [0, 30]\ndphi_deg = [180]\n";
+/// `export` with extra options.
+fn export(what: &'static str, extra: &[&'static str], code: i32, says: &[&'static str]) -> Case {
+    let mut args = vec!["export", "--material", "paint", "--out", "{d}/out.json"];
+    args.extend_from_slice(extra);
+    case(what, vec![], &args, code, says)
+}
 
 fn table() -> Vec<Case> {
     let long_field = "7".repeat(100_000) + "x";
@@ -528,6 +609,36 @@ fn table() -> Vec<Case> {
         eval_geometry("azimuth 1e17", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,1e17,30,180\n"), 3, &["g.csv:2:", "phi_i_deg", "1e8"]),
         eval_geometry("azimuth -1e300", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,-1e300\n"), 3, &["g.csv:2:", "phi_r_deg", "1e8"]),
         case("views azimuth 1e17", vec![("s.toml", t(SCENE)), ("v.csv", t("theta_r_deg,phi_r_deg\n30,1e17\n"))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--input", "{d}/v.csv", "--output", "{d}/out.csv"], 3, &["v.csv:2:", "phi_r_deg"]),
+        // Mitsuba TensorFiles (.pbsdf): fit and export.
+        fit_pbsdf("pbsdf: wrong magic", { let mut b = pbsdf(|_| {}); b[0] = b'T'; b }, &["t.pbsdf", "not a valid TensorFile", "wrong magic"]),
+        fit_pbsdf("pbsdf: empty file", vec![], &["t.pbsdf", "too short", "truncated"]),
+        fit_pbsdf("pbsdf: truncated header", pbsdf(|_| {})[..40].to_vec(), &["t.pbsdf", "truncated header"]),
+        fit_pbsdf("pbsdf: truncated data", { let b = pbsdf(|_| {}); b[..b.len() - 100].to_vec() }, &["t.pbsdf", "field `M`", "runs past the end of the file", "truncated"]),
+        fit_pbsdf("pbsdf: version 2.0", { let mut b = pbsdf(|_| {}); b[12] = 2; b }, &["t.pbsdf", "unsupported version 2.0"]),
+        fit_pbsdf("pbsdf: unknown dtype code", pbsdf(|f| f[4].1 = 12), &["t.pbsdf", "field `M`", "unknown dtype code 12"]),
+        fit_pbsdf("pbsdf: float64 matrices", pbsdf(|f| { f[4].1 = 11; f[4].3 = vec![0u8; 27 * 5 * 16 * 8]; }), &["t.pbsdf", "field `M`", "dtype float64 where float32 is required"]),
+        fit_pbsdf("pbsdf: uint32 wavelengths", pbsdf(|f| { f[3].1 = 5; f[3].3 = vec![0u8; 20]; }), &["t.pbsdf", "field `wvls`", "dtype uint32 where uint16"]),
+        fit_pbsdf("pbsdf: shape inconsistent with the axes", pbsdf(|f| { f[4].2 = vec![3, 3, 3, 4, 5, 4]; }), &["t.pbsdf", "field `M`", "inconsistent with the axes", "[3, 3, 3, 5, 4, 4]"]),
+        fit_pbsdf("pbsdf: shape larger than the data", pbsdf(|f| { f[4].2 = vec![3, 3, 3, 6, 4, 4]; }), &["t.pbsdf", "field `M`", "runs past the end"]),
+        fit_pbsdf("pbsdf: missing field", pbsdf(|f| { f.remove(3); }), &["t.pbsdf", "field `wvls`", "missing"]),
+        fit_pbsdf("pbsdf: field twice", pbsdf(|f| { f[1].0 = "phi_d"; }), &["t.pbsdf", "field `phi_d`", "appears twice"]),
+        fit_pbsdf("pbsdf: axis of shape [3]", pbsdf(|f| { f[2].2 = vec![3]; }), &["t.pbsdf", "field `theta_h`", "shape [3]", "[1, n ≥ 1]"]),
+        fit_pbsdf("pbsdf: axis not increasing", pbsdf(|f| { f[1].3 = f32s(&[0.0, 0.7, 0.7]); }), &["t.pbsdf", "field `theta_d`", "node 2", "does not increase"]),
+        fit_pbsdf("pbsdf: axis NaN", pbsdf(|f| { f[2].3 = f32s(&[0.0, f32::NAN, 1.5]); }), &["t.pbsdf", "field `theta_h`", "node 1 = NaN"]),
+        fit_pbsdf("pbsdf: theta_h beyond 90°", pbsdf(|f| { f[2].3 = f32s(&[0.0, 0.7, 2.0]); }), &["t.pbsdf", "field `theta_h`", "node 2 = 2", "outside"]),
+        fit_pbsdf("pbsdf: offset inside the header", { let mut b = pbsdf(|_| {}); let at = 18 + 2 + 5 + 2 + 1; b[at..at + 8].copy_from_slice(&4u64.to_le_bytes()); b }, &["t.pbsdf", "field `phi_d`", "overlaps the header"]),
+        fit_pbsdf("pbsdf: offset past the end", { let mut b = pbsdf(|_| {}); let at = 18 + 2 + 5 + 2 + 1; b[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes()); b }, &["t.pbsdf", "field `phi_d`", "runs past the end"]),
+        fit_pbsdf("pbsdf: overlapping fields", { let mut b = pbsdf(|_| {}); let first = 18 + 2 + 5 + 2 + 1; let second = first + 8 + 16 + 2 + 7 + 2 + 1; let v = b[first..first + 8].to_vec(); b[second..second + 8].copy_from_slice(&v); b }, &["t.pbsdf", "overlaps field"]),
+        fit_pbsdf("pbsdf: shape overflow", pbsdf(|f| { f[4].2 = vec![u64::MAX, 3, 3, 5, 4, 4]; }), &["t.pbsdf", "field `M`", "overflows"]),
+        case("pbsdf: --subsample 0", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--subsample", "0", "--output", "{d}/out.json"], 3, &["--subsample 0"]),
+        case("pbsdf: --per-wavelength", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--per-wavelength", "--output", "{d}/out.json"], 2, &["per band already"]),
+        export("export: four bands", &["--bands", "450,500,550,600"], 3, &["--bands", "4 band(s)", "exactly five"]),
+        export("export: bands not increasing", &["--bands", "450,500,500,600,650"], 3, &["--bands", "increase"]),
+        export("export: band not a number", &["--bands", "450,green,550,600,650"], 3, &["--bands", "`green`"]),
+        export("export: grid of two numbers", &["--grid", "37,46"], 3, &["--grid", "three node counts"]),
+        export("export: grid of one node", &["--grid", "1,46,91"], 3, &["--grid", "2–4096"]),
+        case("export: unknown material", vec![], &["export", "--material", "nope", "--out", "{d}/out.json"], 3, &["nope"]),
+        case("export: directory missing", vec![], &["export", "--material", "paint", "--grid", "3,3,3", "--out", "{d}/no/out.pbsdf"], 4, &["out.pbsdf", "cannot write"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),

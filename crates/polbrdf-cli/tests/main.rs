@@ -13,5 +13,6 @@ mod golden;
 mod lut;
 mod map;
 mod outputs;
+mod pbsdf;
 mod presets;
 mod spectral;

@@ -12,9 +12,11 @@ pub mod lut;
 pub mod material;
 pub mod measurements;
 pub mod npy;
+pub mod pbsdf;
 pub mod refractive;
 pub mod scene;
 pub mod stream;
+pub mod tensorfile;
 pub mod write;
 
 pub use csv_io::{
@@ -25,10 +27,12 @@ pub use csv_io::{
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material};
 pub use measurements::{parse_measurements_csv, read_measurements_csv, MeasurementTable};
+pub use pbsdf::{write_pbsdf, PbsdfTable};
 pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
 pub use scene::{parse_scene, read_scene, Scene, SceneObject};
+pub use tensorfile::TensorFile;
 pub use write::{
     check_distinct, install_signal_cleanup, write_atomic, write_files, Output, Target,
 };

@@ -5,6 +5,7 @@
 pub mod angles;
 pub mod batch;
 pub mod direction;
+pub mod rusinkiewicz;
 
 pub use angles::AngleVariables;
 pub use batch::GeometryBatch;
