@@ -23,6 +23,13 @@ if "scalar_spectral_polarized" not in mi.variants():  # pragma: no cover
 pytestmark = pytest.mark.skipif(CLI is None, reason="no polbrdf binary (set POLBRDF_CLI)")
 mi.set_variant("scalar_spectral_polarized")
 
+
+@pytest.fixture(autouse=True)
+def _variant() -> None:
+    # Mitsuba's variant is global: another test module (test_peer_mitsuba.py) may have chosen
+    # its own since this one was imported.
+    mi.set_variant("scalar_spectral_polarized")
+
 #: The test grid: φ_d 10°, θ_d 2°, θ_h 1° (the default of `polbrdf export`).
 GRID = (37, 46, 91)
 BANDS = (450, 500, 550, 600, 650)

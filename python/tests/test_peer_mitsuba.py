@@ -32,6 +32,15 @@ except Exception as e:  # pragma: no cover - depends on the environment
         allow_module_level=True,
     )
 
+
+
+@pytest.fixture(autouse=True)
+def _variant() -> None:
+    # Mitsuba's variant is global: another test module may have chosen its own since this one
+    # was imported.
+    mi.set_variant("llvm_ad_mono_polarized")
+
+
 _spec = importlib.util.spec_from_file_location("bench_peers", REPO / "scripts" / "bench_peers.py")
 assert _spec is not None and _spec.loader is not None
 bench_peers = importlib.util.module_from_spec(_spec)
