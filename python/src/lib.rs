@@ -800,45 +800,46 @@ fn mueller_flat<'py>(
     let m = &material.inner;
     match precision {
         Precision::F64 => {
-            let arr = match &out {
-                Some(o) => out_rows::<f64>(o, n, "float64")?,
-                None => zeros2::<f64>(py, n, 16)?,
-            };
-            let mut rw = arr.try_readwrite().map_err(|e| {
-                PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
-            })?;
-            let flat = rw.as_slice_mut().expect("checked C-contiguous");
-            let (rows, _) = flat.as_chunks_mut::<16>();
-            py.detach(|| {
-                mueller_rows(m, input, wl, degrees, rows, |k, b, r| {
-                    k.mueller_into(b, 0, r);
-                    false
-                })
+            mueller_array::<f64>(py, m, input, wl, degrees, out, n, "float64", |k, b, r| {
+                k.mueller_into(b, 0, r);
+                false
             })
-            .map_err(|e| core_err(py, &e))?;
-            drop(rw);
-            Ok(arr.into_any())
         }
         Precision::F32 => {
-            let arr = match &out {
-                Some(o) => out_rows::<f32>(o, n, "float32")?,
-                None => zeros2::<f32>(py, n, 16)?,
-            };
-            let mut rw = arr.try_readwrite().map_err(|e| {
-                PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
-            })?;
-            let flat = rw.as_slice_mut().expect("checked C-contiguous");
-            let (rows, _) = flat.as_chunks_mut::<16>();
-            py.detach(|| {
-                mueller_rows(m, input, wl, degrees, rows, |k, b, r| {
-                    k.mueller_f32_into(b, 0, r)
-                })
+            mueller_array::<f32>(py, m, input, wl, degrees, out, n, "float32", |k, b, r| {
+                k.mueller_f32_into(b, 0, r)
             })
-            .map_err(|e| core_err(py, &e))?;
-            drop(rw);
-            Ok(arr.into_any())
         }
     }
+}
+
+/// [`mueller_flat`] in the element type `T` (numpy's `dtype`): `out` (checked by [`out_rows`])
+/// or a new `(n, 16)` array, filled by `store` through [`mueller_rows`] with the GIL released.
+#[allow(clippy::too_many_arguments)]
+fn mueller_array<'py, T: numpy::Element + Send>(
+    py: Python<'py>,
+    m: &Material,
+    input: [&[f64]; 4],
+    wl: Option<&[f64]>,
+    degrees: bool,
+    out: Option<Bound<'py, PyAny>>,
+    n: usize,
+    dtype: &str,
+    store: impl Fn(&Kernel<'_>, &GeometryBatch<'_>, &mut [[T; 16]]) -> bool + Sync + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let arr = match &out {
+        Some(o) => out_rows::<T>(o, n, dtype)?,
+        None => zeros2::<T>(py, n, 16)?,
+    };
+    let mut rw = arr.try_readwrite().map_err(|e| {
+        PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
+    })?;
+    let flat = rw.as_slice_mut().expect("checked C-contiguous");
+    let (rows, _) = flat.as_chunks_mut::<16>();
+    py.detach(|| mueller_rows(m, input, wl, degrees, rows, store))
+        .map_err(|e| core_err(py, &e))?;
+    drop(rw);
+    Ok(arr.into_any())
 }
 
 /// The scalar BRDF `f` (sr⁻¹) and the DoLP for unpolarized input at `n` geometries, as two

@@ -53,6 +53,27 @@ pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     }
 }
 
+/// The 1-based line of byte `pos` of `text` (for TOML spans).
+pub(crate) fn line_of(text: &str, pos: usize) -> usize {
+    text.as_bytes()[..pos.min(text.len())]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+/// The text of `path` ([`read_all`]); bytes that are not UTF-8 are an error naming the line.
+pub(crate) fn read_text(path: &Path) -> Result<String> {
+    String::from_utf8(read_all(path)?).map_err(|e| {
+        let pos = e.utf8_error().valid_up_to();
+        Error::Syntax {
+            path: path.to_path_buf(),
+            line: line_of(&String::from_utf8_lossy(&e.as_bytes()[..pos]), pos),
+            message: "file is not valid UTF-8 text".into(),
+        }
+    })
+}
+
 /// The longest line a CSV reader accepts (bytes, line end excluded): a header of 10⁵ columns
 /// fits; a longer line is an error naming it, so that no single line can exhaust memory.
 pub const MAX_LINE_BYTES: usize = 1 << 20;

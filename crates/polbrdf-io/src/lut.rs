@@ -16,6 +16,7 @@
 //! `j = 0 … count − 2` and exactly `stop` last, as `numpy.linspace` computes it; `count = 1`
 //! needs `start = stop`.
 
+use crate::csv_io::{line_of, read_text};
 use crate::error::{Error, Result};
 use crate::material::load_material;
 use polbrdf::MaterialSpec;
@@ -123,15 +124,6 @@ const KEYS: &[(&str, &str)] = &[
         "an array of quantity names (mueller, brdf, dolp, aolp)",
     ),
 ];
-
-/// 1-based line of byte offset `pos` in `text`.
-fn line_of(text: &str, pos: usize) -> usize {
-    text.as_bytes()[..pos.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
 
 struct Doc<'a> {
     path: &'a Path,
@@ -455,18 +447,7 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
 /// [`Error::Read`] if it cannot be read; [`Error::Syntax`] if it is not UTF-8; as
 /// [`parse_lut_config`].
 pub fn read_lut_config(path: &Path) -> Result<LutConfig> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let pos = e.utf8_error().valid_up_to();
-        Error::Syntax {
-            path: path.to_path_buf(),
-            line: line_of(&String::from_utf8_lossy(&e.as_bytes()[..pos]), pos),
-            message: "file is not valid UTF-8 text".into(),
-        }
-    })?;
+    let text = read_text(path)?;
     parse_lut_config(&text, path)
 }
 

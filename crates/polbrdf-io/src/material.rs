@@ -1,6 +1,7 @@
 //! Material files: flat TOML with the keys of [`polbrdf::MaterialSpec`] (see the README's CLI
 //! contract), or a preset name.
 
+use crate::csv_io::{line_of, read_text};
 use crate::error::{Error, Result};
 use polbrdf::model::KeyValue;
 use polbrdf::MaterialSpec;
@@ -11,15 +12,6 @@ use toml::{Spanned, Value};
 /// The keys a material file may hold, in the order [`material_to_toml`] writes them (the core's
 /// list, [`polbrdf::model::KEYS`]).
 pub use polbrdf::model::KEYS;
-
-/// 1-based line of byte offset `pos` in `text`.
-fn line_of(text: &str, pos: usize) -> usize {
-    text.as_bytes()[..pos.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
 
 /// Parses a material file's text; `path` names it in error messages, and its folder is where a
 /// relative `index = "file.yml"` is found (`library:<id>` names a library entry instead).
@@ -199,18 +191,7 @@ pub fn load_material(arg: &str) -> Result<MaterialSpec> {
             ),
         });
     }
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let pos = e.utf8_error().valid_up_to();
-        Error::Syntax {
-            path: path.to_path_buf(),
-            line: line_of(&String::from_utf8_lossy(e.as_bytes()), pos),
-            message: "file is not valid UTF-8 text".into(),
-        }
-    })?;
+    let text = read_text(path)?;
     parse_material(&text, path)
 }
 

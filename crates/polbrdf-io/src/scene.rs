@@ -56,9 +56,9 @@
 //! table is rows of `KEYS` and a function; a new sky model is a row of `SKY_MODELS`, its keys
 //! in `KEYS` and an arm of the match in `sky`.
 
+use crate::csv_io::{line_of, read_text};
 use crate::csv_io::{
-    read_all, read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_message, short_name,
-    show,
+    read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_message, short_name, show,
 };
 use crate::error::{Error, Result};
 use crate::material::load_material;
@@ -347,15 +347,6 @@ const SKY_MODELS: &[SkyModelKeys] = &[
 
 /// The default `dop_max` of the `cie-clear` sky.
 const DEFAULT_DOP_MAX: f64 = 0.75;
-
-/// 1-based line of byte offset `pos` in `text`.
-fn line_of(text: &str, pos: usize) -> usize {
-    text.as_bytes()[..pos.min(text.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
-}
 
 /// A TOML table with the position of every key and value.
 type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
@@ -1011,14 +1002,6 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
 /// [`Error::Read`] if it cannot be read; [`Error::Syntax`] if it is not UTF-8 text; as
 /// [`parse_scene`].
 pub fn read_scene(path: &Path) -> Result<Scene> {
-    let bytes = read_all(path)?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let pos = e.utf8_error().valid_up_to();
-        Error::Syntax {
-            path: path.to_path_buf(),
-            line: line_of(&String::from_utf8_lossy(&e.as_bytes()[..pos]), pos),
-            message: "file is not valid UTF-8 text".into(),
-        }
-    })?;
+    let text = read_text(path)?;
     parse_scene(&text, path)
 }
