@@ -1802,6 +1802,65 @@ impl PyFitResult {
     fn warnings(&self) -> Vec<String> {
         self.result.warnings.clone()
     }
+    /// Pickle support: every field as plain values (the fitted material pickles itself),
+    /// rebuilt by `_fit_result_from_state`.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (FitState, PyMaterial))> {
+        let r = &self.result;
+        let bounds = r
+            .bounds
+            .iter()
+            .map(|b| match b {
+                polbrdf_fit::Bound::Interior => None,
+                polbrdf_fit::Bound::AtLowerBound {
+                    upper_limit_95,
+                    correlation_at_limit,
+                } => Some((*upper_limit_95, correlation_at_limit.clone())),
+            })
+            .collect();
+        let zbs = r.zero_bistatic.as_ref().map(|z| {
+            (
+                (z.a, z.b, z.stderr_a, z.stderr_b, z.correlation_ab),
+                (z.samples.clone(), z.excluded.clone(), z.weighted),
+            )
+        });
+        let state = (
+            (
+                r.warnings.clone(),
+                r.params.iter().map(|p| p.name().to_string()).collect(),
+                r.values.clone(),
+                r.stderr.clone(),
+                bounds,
+                r.covariance.clone(),
+                r.correlation.clone(),
+            ),
+            (
+                r.chi2,
+                r.dof,
+                r.reduced_chi2,
+                r.scaled_by_residuals,
+                r.converged,
+                r.iterations,
+                r.message.clone(),
+                r.starts,
+            ),
+            zbs,
+            r.residuals
+                .iter()
+                .map(|x| (x.index, x.model, x.data, x.sigma))
+                .collect(),
+        );
+        let material = PyMaterial {
+            inner: self.material.clone(),
+        };
+        let f = py
+            .import("polbrdf._polbrdf")?
+            .getattr("_fit_result_from_state")?;
+        Ok((f, (state, material)))
+    }
+
     /// The fitted material.
     #[getter]
     fn material(&self) -> PyMaterial {
@@ -1983,10 +2042,107 @@ fn fit_flat<'py>(
     Ok(PyFitResult { result, material })
 }
 
+/// A bound of a [`polbrdf_fit::Bound`] as plain values: `None` inside the domain.
+type BoundState = Option<(Option<f64>, Option<Vec<f64>>)>;
+/// A zero-bistatic start as plain values.
+type ZbsState = (
+    (f64, f64, f64, f64, f64),
+    (Vec<(f64, f64)>, Vec<usize>, bool),
+);
+/// A [`PyFitResult`] as plain values (its pickled state).
+type FitState = (
+    (
+        Vec<String>,
+        Vec<String>,
+        Vec<f64>,
+        Vec<f64>,
+        Vec<BoundState>,
+        Vec<Vec<f64>>,
+        Vec<Vec<f64>>,
+    ),
+    (f64, usize, f64, bool, bool, usize, String, (usize, usize)),
+    Option<ZbsState>,
+    Vec<(usize, f64, f64, f64)>,
+);
+
+/// The inverse of `FitResult.__reduce__`. The fit's material specification is the fitted
+/// material's (for a spectral fit the constant index at the fitted wavelength; no attribute of
+/// `FitResult` shows the difference).
+#[pyfunction]
+fn _fit_result_from_state(state: FitState, m: PyRef<'_, PyMaterial>) -> PyResult<PyFitResult> {
+    let ((warnings, names, values, stderr, bounds, covariance, correlation), tail, zbs, res) =
+        state;
+    let (chi2, dof, reduced_chi2, scaled_by_residuals, converged, iterations, message, starts) =
+        tail;
+    let params = names
+        .iter()
+        .map(|n| polbrdf_fit::Param::parse(n))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let bounds = bounds
+        .into_iter()
+        .map(|b| match b {
+            None => polbrdf_fit::Bound::Interior,
+            Some((upper_limit_95, correlation_at_limit)) => polbrdf_fit::Bound::AtLowerBound {
+                upper_limit_95,
+                correlation_at_limit,
+            },
+        })
+        .collect();
+    let zero_bistatic = zbs.map(
+        |((a, b, stderr_a, stderr_b, correlation_ab), (samples, excluded, weighted))| {
+            polbrdf_fit::zbs::ZbsFit {
+                a,
+                b,
+                stderr_a,
+                stderr_b,
+                correlation_ab,
+                samples,
+                excluded,
+                weighted,
+            }
+        },
+    );
+    let residuals = res
+        .into_iter()
+        .map(|(index, model, data, sigma)| polbrdf_fit::Residual {
+            index,
+            model,
+            data,
+            sigma,
+        })
+        .collect();
+    let result = polbrdf_fit::FitResult {
+        warnings,
+        params,
+        values,
+        stderr,
+        bounds,
+        covariance,
+        correlation,
+        chi2,
+        dof,
+        reduced_chi2,
+        scaled_by_residuals,
+        converged,
+        iterations,
+        message,
+        starts,
+        zero_bistatic,
+        spec: m.inner.spec().clone(),
+        residuals,
+    };
+    Ok(PyFitResult {
+        result,
+        material: m.inner.clone(),
+    })
+}
+
 /// The compiled part of the `polbrdf` package (import `polbrdf`, not this module).
 #[pymodule]
 fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMaterial>()?;
+    m.add_function(wrap_pyfunction!(_fit_result_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(mueller_flat, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;

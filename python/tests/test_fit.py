@@ -108,3 +108,36 @@ def test_a_parameter_at_its_bound_has_an_upper_limit_not_a_standard_error() -> N
     c = b[1]["correlation_at_limit"]
     assert c.shape == (3,) and c[1] == pytest.approx(1.0)
     assert r.values[0] == pytest.approx(1.5, abs=1e-6)
+
+
+def _same(a: object, b: object) -> bool:
+    """Equality of attribute values, NaN equal to NaN, arrays and dicts compared element-wise."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.array_equal(np.asarray(a), np.asarray(b), equal_nan=True)
+    if isinstance(a, float) and isinstance(b, float):
+        return a == b or (np.isnan(a) and np.isnan(b))
+    return a == b
+
+
+def test_a_fit_result_pickles_with_every_attribute() -> None:
+    # Issue 18 (item 17): a FitResult survives pickle (and so multiprocessing and dask) with
+    # every attribute bit for bit, a parameter at its bound (NaN stderr, upper limit) included.
+    import pickle
+
+    truth = polbrdf.Material(n=1.5, sigma_deg=10.0, rho_d=0.02)
+    ti, pi, tr, pr = _geometry()
+    e = polbrdf.evaluate(truth, ti, pi, tr, pr)
+    start = polbrdf.Material(n=1.45, k=0.05, sigma_deg=12.0, rho_d=0.02)
+    r = polbrdf.fit(start, ti, pi, tr, pr, {"brdf": e.brdf, "dolp": e.dolp},
+                    ["n", "k", "sigma_deg"], sigma={"brdf": 0.02 * e.brdf, "dolp": 0.005})
+    q = pickle.loads(pickle.dumps(r))
+    assert type(q) is type(r)
+    names = [a for a in dir(r) if not a.startswith("_")]
+    assert {"values", "stderr", "bounds", "covariance", "residuals", "material"} <= set(names)
+    for a in names:
+        assert _same(getattr(q, a), getattr(r, a)), a
+    assert repr(q) == repr(r)
