@@ -2,6 +2,7 @@
 
 mod csv_files;
 mod csv_limits;
+mod file_sets;
 mod material_files;
 mod npy_files;
 mod refractive;
