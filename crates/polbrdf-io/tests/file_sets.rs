@@ -23,6 +23,17 @@ fn listing(dir: &Path) -> Vec<String> {
     v
 }
 
+/// Every file of `dir` with its bytes, sorted by name.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    listing(dir)
+        .into_iter()
+        .map(|n| {
+            let b = std::fs::read(dir.join(&n)).unwrap();
+            (n, b)
+        })
+        .collect()
+}
+
 #[test]
 fn a_new_set_appears_whole_with_its_marker() {
     let tmp = tempfile::tempdir().unwrap();
@@ -52,25 +63,13 @@ fn a_fault_while_staging_over_an_old_set_keeps_the_old_set() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("out");
     write_files(&dir, &files(&["a.csv", "b.png"])).unwrap();
-    let before: Vec<(String, Vec<u8>)> = listing(&dir)
-        .into_iter()
-        .map(|n| {
-            let b = std::fs::read(dir.join(&n)).unwrap();
-            (n, b)
-        })
-        .collect();
+    let before = contents(&dir);
     assert!(write_files(
         &dir,
         &[("a.csv".into(), b"x".to_vec()), ("".into(), vec![])]
     )
     .is_err());
-    let after: Vec<(String, Vec<u8>)> = listing(&dir)
-        .into_iter()
-        .map(|n| {
-            let b = std::fs::read(dir.join(&n)).unwrap();
-            (n, b)
-        })
-        .collect();
+    let after = contents(&dir);
     assert_eq!(after, before, "the old set, marker included, is untouched");
     assert_eq!(listing(tmp.path()), ["out"], "no staging directory left");
 }
