@@ -91,14 +91,18 @@ def test_refusals_are_value_errors() -> None:
         polbrdf.fit(m, [40] * 8, 0, [40] * 8, 180, {"brdf": [3.0] * 8}, ["a", "sigma_deg"])
 
 
-def test_a_parameter_at_its_bound_has_an_upper_limit_not_a_standard_error() -> None:
-    # A dielectric (k = 0) without noise, k free: the best k is its bound 0.
+def _fit_at_bound() -> polbrdf.FitResult:
+    """A dielectric (k = 0) without noise, k free: the best k is its bound 0."""
     truth = polbrdf.Material(n=1.5, sigma_deg=10.0, rho_d=0.02)
     ti, pi, tr, pr = _geometry()
     e = polbrdf.evaluate(truth, ti, pi, tr, pr)
     start = polbrdf.Material(n=1.45, k=0.05, sigma_deg=12.0, rho_d=0.02)
-    r = polbrdf.fit(start, ti, pi, tr, pr, {"brdf": e.brdf, "dolp": e.dolp},
-                    ["n", "k", "sigma_deg"], sigma={"brdf": 0.02 * e.brdf, "dolp": 0.005})
+    return polbrdf.fit(start, ti, pi, tr, pr, {"brdf": e.brdf, "dolp": e.dolp},
+                       ["n", "k", "sigma_deg"], sigma={"brdf": 0.02 * e.brdf, "dolp": 0.005})
+
+
+def test_a_parameter_at_its_bound_has_an_upper_limit_not_a_standard_error() -> None:
+    r = _fit_at_bound()
     assert r.names == ["n", "k", "sigma_deg"]
     b = r.bounds
     assert b[0] is None and b[2] is None
@@ -128,12 +132,7 @@ def test_a_fit_result_pickles_with_every_attribute() -> None:
     # every attribute bit for bit, a parameter at its bound (NaN stderr, upper limit) included.
     import pickle
 
-    truth = polbrdf.Material(n=1.5, sigma_deg=10.0, rho_d=0.02)
-    ti, pi, tr, pr = _geometry()
-    e = polbrdf.evaluate(truth, ti, pi, tr, pr)
-    start = polbrdf.Material(n=1.45, k=0.05, sigma_deg=12.0, rho_d=0.02)
-    r = polbrdf.fit(start, ti, pi, tr, pr, {"brdf": e.brdf, "dolp": e.dolp},
-                    ["n", "k", "sigma_deg"], sigma={"brdf": 0.02 * e.brdf, "dolp": 0.005})
+    r = _fit_at_bound()
     q = pickle.loads(pickle.dumps(r))
     assert type(q) is type(r)
     names = [a for a in dir(r) if not a.startswith("_")]

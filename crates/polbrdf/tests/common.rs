@@ -1,6 +1,6 @@
 //! Shared helpers: loading the reference test vectors.
 
-use polbrdf::{AzimuthTerm, Form, MaterialSpec};
+use polbrdf::{AzimuthTerm, Form, Geometry, MaterialSpec};
 use serde_json::Value;
 
 pub struct Case {
@@ -32,6 +32,17 @@ pub fn cases() -> Vec<Case> {
 
 pub fn f(v: &Value) -> f64 {
     v.as_f64().expect("number")
+}
+
+/// The geometry of a case (its four angles in degrees).
+pub fn geometry(inp: &Value) -> Geometry {
+    Geometry::from_degrees(
+        f(&inp["theta_i_deg"]),
+        f(&inp["phi_i_deg"]),
+        f(&inp["theta_r_deg"]),
+        f(&inp["phi_r_deg"]),
+    )
+    .unwrap()
 }
 
 /// The material of a case, as a user would write it: σ when given with the hemispherical

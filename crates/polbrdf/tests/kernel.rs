@@ -3,7 +3,7 @@
 //! the DoLP within 1e-12 absolute — on every test vector and on random inputs across materials
 //! and geometries (degenerate ones included), at every SIMD level this CPU supports.
 
-use crate::common::{cases, f, spec_of};
+use crate::common::{cases, geometry, spec_of};
 use polbrdf::batch;
 use polbrdf::engine::{Kernel, SimdLevel};
 use polbrdf::GeometryBatch;
@@ -226,13 +226,7 @@ fn every_test_vector_matches_the_reference_path() {
     assert!(all.len() >= 40);
     for c in &all {
         let m = spec_of(&c.inputs).build().unwrap();
-        let g = Geometry::from_degrees(
-            f(&c.inputs["theta_i_deg"]),
-            f(&c.inputs["phi_i_deg"]),
-            f(&c.inputs["theta_r_deg"]),
-            f(&c.inputs["phi_r_deg"]),
-        )
-        .unwrap();
+        let g = geometry(&c.inputs);
         let (wf, wb) = check(
             &c.id,
             &m,

@@ -5,12 +5,12 @@
 //! metals with large k, the extreme bounds of the parameters); entries beyond f32's range are
 //! refused.
 
-use crate::common::{cases, f, spec_of};
+use crate::common::{cases, geometry, spec_of};
 use crate::kernel::{random_geometry, random_material};
 use polbrdf::engine::batch::STREAM_MIN;
 use polbrdf::engine::{Engine, Precision};
 use polbrdf::sample::SplitMix64 as Rng;
-use polbrdf::{Error, Geometry, GeometryBatch, Material, MaterialSpec};
+use polbrdf::{Error, GeometryBatch, Material, MaterialSpec};
 
 /// The accuracy asked of the float32 path, relative to F00.
 const TOL: f64 = 1e-5;
@@ -68,13 +68,7 @@ fn float32_on_every_test_vector_is_float64_rounded() {
     let mut worst = 0.0_f64;
     for c in &cases() {
         let m = spec_of(&c.inputs).build().unwrap();
-        let g = Geometry::from_degrees(
-            f(&c.inputs["theta_i_deg"]),
-            f(&c.inputs["phi_i_deg"]),
-            f(&c.inputs["theta_r_deg"]),
-            f(&c.inputs["phi_r_deg"]),
-        )
-        .unwrap();
+        let g = geometry(&c.inputs);
         let w = check(
             &c.id,
             &m,

@@ -1,17 +1,6 @@
 //! Every case of the shared test vectors (docs/model.md §13), through the library.
 
-use crate::common::{assert_matches, cases, f, matrix, spec_of};
-use polbrdf::Geometry;
-
-fn geometry(inp: &serde_json::Value) -> Geometry {
-    Geometry::from_degrees(
-        f(&inp["theta_i_deg"]),
-        f(&inp["phi_i_deg"]),
-        f(&inp["theta_r_deg"]),
-        f(&inp["phi_r_deg"]),
-    )
-    .unwrap()
-}
+use crate::common::{assert_matches, cases, f, geometry, matrix, spec_of};
 
 #[test]
 fn all_test_vectors_match_through_the_library() {
