@@ -13,7 +13,8 @@
 
 use crate::geometry::angles::{self, AngleVariables, FacetAngles, Trig};
 use crate::model::material::ModelParams;
-use crate::model::terms;
+use crate::model::shadowing::{AzimuthTerm, Shadowing};
+use crate::model::terms::{self, Form};
 use crate::numeric::math::Math;
 use crate::optics::fresnel;
 use crate::optics::mueller;
@@ -62,11 +63,15 @@ pub(crate) struct IndexLanes<const N: usize> {
 }
 
 /// Sines and cosines of a block ([`Trig`] in structure-of-arrays form).
-struct TrigLanes<const N: usize> {
+pub(crate) struct TrigLanes<const N: usize> {
     v: [Lanes<N>; 8],
 }
 
 impl<const N: usize> TrigLanes<N> {
+    pub(crate) fn zeroed() -> Self {
+        Self { v: [[0.0; N]; 8] }
+    }
+
     #[inline(always)]
     fn set(&mut self, j: usize, t: Trig) {
         [
@@ -121,20 +126,6 @@ impl<const N: usize> FacetLanes<N> {
             lane[j] = x;
         }
     }
-    /// Copies another block's lanes (of the same length).
-    #[inline(always)]
-    pub(crate) fn copy_from<const M: usize>(&mut self, other: &FacetLanes<M>) {
-        for (a, b) in self.v.iter_mut().zip(&other.v) {
-            a.copy_from_slice(b);
-        }
-    }
-
-    /// From ten lanes (θi, cos θi, cos θr, θN, β, ΦN, cos β, sin²β, s_z, |s|²).
-    #[inline(always)]
-    pub(crate) fn from_columns(v: [Lanes<N>; 10]) -> Self {
-        Self { v }
-    }
-
     #[inline(always)]
     pub(crate) fn get(&self, j: usize) -> FacetAngles {
         let v = &self.v;
@@ -171,33 +162,65 @@ pub(crate) struct Geom<const N: usize> {
     pub angles: [Lanes<N>; 4],
 }
 
-/// The geometry stages of a block: sines and cosines, the angles (ΦN when `phi_n`) and, with
-/// `PAIRS`, the Priest–Meier pairs.
+impl<const N: usize> Geom<N> {
+    pub(crate) fn zeroed() -> Self {
+        let z = [0.0; N];
+        Self {
+            valid: [false; N],
+            out_of_range: [false; N],
+            facet: FacetLanes { v: [z; 10] },
+            pairs: [z; 4],
+            angles: [z; 4],
+        }
+    }
+}
+
+/// What the geometry stages of a block work in: the angles, the sines and cosines, and the
+/// results. Made (zeroed) once per job and overwritten block by block, so that no block pays
+/// for initializing or moving its arrays.
+pub(crate) struct GeomScratch<const N: usize> {
+    pub input: BlockIn<N>,
+    pub trig: TrigLanes<N>,
+    pub geo: Geom<N>,
+}
+
+impl<const N: usize> GeomScratch<N> {
+    pub(crate) fn zeroed() -> Self {
+        Self {
+            input: BlockIn::zeroed(),
+            trig: TrigLanes::zeroed(),
+            geo: Geom::zeroed(),
+        }
+    }
+}
+
+/// The geometry stages of the block `s.input` into `s.geo`: sines and cosines, the angles
+/// (ΦN when `phi_n`) and, with `PAIRS`, the Priest–Meier pairs. `s.geo.angles` is left as it
+/// is (only a prepared batch keeps the angles).
 #[inline(always)]
 pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-    b: &BlockIn<N>,
+    s: &mut GeomScratch<N>,
     phi_n: bool,
-) -> Geom<N> {
-    let z = [0.0; N];
-    let mut g = Geom {
-        valid: [false; N],
-        out_of_range: [false; N],
-        facet: FacetLanes { v: [z; 10] },
-        pairs: [z; 4],
-        angles: [b.ti, b.pi, b.tr, b.pr],
-    };
+) {
+    let (b, trig, g) = (&s.input, &mut s.trig, &mut s.geo);
     // Stage 1: the four sine/cosine pairs.
-    let mut trig = TrigLanes { v: [z; 8] };
     for j in 0..N {
         trig.set(j, Trig::new::<M>(b.ti[j], b.pi[j], b.tr[j], b.pr[j]));
         g.valid[j] = b.ti[j] < FRAC_PI_2 && b.tr[j] < FRAC_PI_2;
         g.out_of_range[j] = !Trig::in_range::<M>(b.pi[j], b.pr[j]);
     }
-    // Stage 2: the angles (θN, β, ΦN for eq3) and cosines.
+    // Stage 2: the angles (θN, β) and cosines; ΦN (eq3 only) in a loop of its own, so that
+    // materials without it do not pay for its arctangent.
     for j in 0..N {
-        let scale = angles::phi_scale(b.pi[j], b.pr[j]);
-        let a = FacetAngles::from_trig::<M>(b.ti[j], &trig.get(j), scale, phi_n);
+        let a = FacetAngles::from_trig::<M>(b.ti[j], &trig.get(j), 1.0, false);
         g.facet.set(j, a);
+    }
+    if phi_n {
+        for j in 0..N {
+            let t = trig.get(j);
+            let scale = angles::phi_scale(b.pi[j], b.pr[j]);
+            g.facet.v[5][j] = angles::phi_n::<M>(&angles::half_vector::<M>(&t), &t, scale);
+        }
     }
     if PAIRS {
         for j in 0..N {
@@ -205,32 +228,22 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
             [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = [ci, si, cr, sr];
         }
     }
-    g
 }
 
 /// The geometry part of a block of explicit angle variables (the angle-variable entry point).
-pub(crate) fn geometry_of_variables<const N: usize>(v: &[AngleVariables; N]) -> Geom<N> {
-    let z = [0.0; N];
-    let mut g = Geom {
-        valid: [false; N],
-        out_of_range: [false; N],
-        facet: FacetLanes { v: [z; 10] },
-        pairs: [z; 4],
-        angles: [z; 4],
-    };
+pub(crate) fn geometry_of_variables<const N: usize>(v: &[AngleVariables; N], g: &mut Geom<N>) {
     for j in 0..N {
         g.valid[j] = v[j].theta_i < FRAC_PI_2 && v[j].theta_r < FRAC_PI_2;
         g.facet.set(j, FacetAngles::from_variables(&v[j]));
         let [ci, si, cr, sr] = v[j].eta_pairs();
         [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = [ci, si, cr, sr];
     }
-    g
 }
 
-/// What both output paths share, per element of a block: the geometry, the fallback mask, `q`,
-/// the scalar factor `g = f_s/R_F` and `f_v`, and `N²`.
-pub(crate) struct Front<'g, const N: usize> {
-    pub geo: &'g Geom<N>,
+/// What both output paths share, per element of a block: the fallback mask, `q`, the scalar
+/// factor `g = f_s/R_F` and `f_v`, and `N²` (made once per job, overwritten block by block, as
+/// [`GeomScratch`]).
+pub(crate) struct Front<const N: usize> {
     /// The element must take the one-geometry path.
     pub fallback: [bool; N],
     pub qr: Lanes<N>,
@@ -239,27 +252,41 @@ pub(crate) struct Front<'g, const N: usize> {
     pub fv: Lanes<N>,
     pub n2r: Lanes<N>,
     pub n2i: Lanes<N>,
+    /// D and SO's numerator and denominator (between stages).
+    d: Lanes<N>,
+    so_num: Lanes<N>,
+    so_den: Lanes<N>,
+}
+
+impl<const N: usize> Front<N> {
+    pub(crate) fn zeroed() -> Self {
+        let z = [0.0; N];
+        Self {
+            fallback: [false; N],
+            qr: z,
+            qi: z,
+            g: z,
+            fv: z,
+            n2r: z,
+            n2i: z,
+            d: z,
+            so_num: z,
+            so_den: z,
+        }
+    }
 }
 
 /// The material stages of a block: `q` (eq. 10's transmitted wave number) and the scalar terms
 /// D, SO, `g`, `f_v` (eqs. 4, 3, 1, 6), for the index lanes of `b`.
 #[inline(always)]
-pub(crate) fn front<'g, M: Math, const N: usize>(
+pub(crate) fn front<M: Math, const N: usize>(
     p: &ModelParams,
-    geo: &'g Geom<N>,
+    geo: &Geom<N>,
     b: &IndexLanes<N>,
-) -> Front<'g, N> {
-    let z = [0.0; N];
-    let mut f = Front {
-        geo,
-        fallback: [false; N],
-        qr: z,
-        qi: z,
-        g: z,
-        fv: z,
-        n2r: b.n2r,
-        n2i: b.n2i,
-    };
+    f: &mut Front<N>,
+) {
+    f.n2r = b.n2r;
+    f.n2i = b.n2i;
     for j in 0..N {
         f.fallback[j] = b.index_ill[j] || geo.out_of_range[j];
     }
@@ -280,21 +307,54 @@ pub(crate) fn front<'g, M: Math, const N: usize>(
             f.fallback[j] |= z2 < BRANCH_POINT_MIN * BRANCH_POINT_MIN;
         }
     }
-    // Stage 4: D (eq. 4), SO (eq. 3), g and f_v (eqs. 1, 6).
+    // Stage 4: D (eq. 4), SO (eq. 3), g and f_v (eqs. 1, 6) — the same formulas as
+    // `ModelParams::scalar_terms`, one loop per term with the material's choices (shadowing
+    // on or off, its azimuth factor, the form) made before the loops, so that each loop is
+    // straight-line code the compiler vectorizes.
+    let dist = p.distribution;
+    let d = &mut f.d;
     for j in 0..N {
-        let a = geo.facet.get(j);
-        let (g, fv, d, _) = p.scalar_terms::<M>(&a);
-        f.g[j] = g;
-        f.fv[j] = fv;
+        let tn = geo.facet.v[3][j];
+        d[j] = dist.eval_with::<M>(tn);
         // D so far down its tail that θN's last bit shows, or near the underflow limit.
-        let y = p.distribution.exponent(a.theta_n);
-        let da = p.distribution.a();
-        f.fallback[j] |= da > 0.0 && y > -750.0 && (d < TINY || -y > D_EXPONENT_MAX);
+        let y = dist.exponent(tn);
+        f.fallback[j] |= dist.a() > 0.0 && y > -750.0 && (d[j] < TINY || -y > D_EXPONENT_MAX);
+    }
+    let (so_num, so_den) = (&mut f.so_num, &mut f.so_den);
+    so_num.fill(1.0);
+    so_den.fill(1.0);
+    if let Some(s) = p.shadowing {
+        let mut ratio = |s: Shadowing| {
+            for j in 0..N {
+                let a = geo.facet.get(j);
+                (so_num[j], so_den[j]) = s.ratio::<M>(a.theta_n, a.beta, a.phi_n, a.theta_i);
+            }
+        };
+        match s.azimuth_term() {
+            AzimuthTerm::None => ratio(s.with_azimuth(AzimuthTerm::None)),
+            AzimuthTerm::Eq3 => ratio(s.with_azimuth(AzimuthTerm::Eq3)),
+        }
+    }
+    let mut surface = |form: Form| {
+        for j in 0..N {
+            let a = geo.facet.get(j);
+            (f.g[j], f.fv[j]) = terms::surface_and_volume::<M>(
+                form,
+                f.d[j],
+                (f.so_num[j], f.so_den[j]),
+                &a,
+                p.rho_d,
+                p.rho_v,
+            );
+        }
+    };
+    match p.form {
+        Form::Standard => surface(Form::Standard),
+        Form::Paper => surface(Form::Paper),
     }
     for j in 0..N {
         f.fallback[j] = geo.valid[j] && f.fallback[j];
     }
-    f
 }
 
 /// BRDF (F00), DoLP and, with `AOLP`, AoLP (rad) of a block for unpolarized input.
@@ -303,77 +363,63 @@ pub(crate) fn front<'g, M: Math, const N: usize>(
 /// and the DoLP needs no rotation; the AoLP needs η_r.
 #[inline(always)]
 pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
-    f: &mut Front<'_, N>,
+    f: &mut Front<N>,
+    geo: &Geom<N>,
     out: &mut [Lanes<N>; 3],
 ) {
     let mut gb = [0.0; N];
     for j in 0..N {
-        let c = f.geo.facet.get(j).cos_beta;
+        let c = geo.facet.get(j).cos_beta;
         let [rs2, rp2, _, _] = fresnel::reflectances::<M>(f.n2r[j], f.n2i[j], c, f.qr[j], f.qi[j]);
         let [a, b] = mueller::intensity_coefficients(rs2, rp2);
         let g = terms::flush_subnormal(f.g[j], a);
         let f00 = g * a + f.fv[j];
         gb[j] = g * b;
         let d = stokes::dolp(gb[j].abs(), f00);
-        f.fallback[j] |= f.geo.valid[j] && f00 > 0.0 && f00 < TINY;
-        out[0][j] = if f.geo.valid[j] { f00 } else { 0.0 };
-        out[1][j] = if f.geo.valid[j] { d } else { 0.0 };
+        f.fallback[j] |= geo.valid[j] && f00 > 0.0 && f00 < TINY;
+        out[0][j] = if geo.valid[j] { f00 } else { 0.0 };
+        out[1][j] = if geo.valid[j] { d } else { 0.0 };
     }
     if AOLP {
         for j in 0..N {
             let p = [
-                f.geo.pairs[0][j],
-                f.geo.pairs[1][j],
-                f.geo.pairs[2][j],
-                f.geo.pairs[3][j],
+                geo.pairs[0][j],
+                geo.pairs[1][j],
+                geo.pairs[2][j],
+                geo.pairs[3][j],
             ];
             let [_, _, cr2, sr2] = angles::rotations::<M>(p);
             let a = stokes::aolp::<M>(cr2 * gb[j], sr2 * gb[j]);
-            out[2][j] = if f.geo.valid[j] && gb[j] != 0.0 {
-                a
-            } else {
-                0.0
-            };
+            out[2][j] = if geo.valid[j] && gb[j] != 0.0 { a } else { 0.0 };
         }
     }
 }
 
-/// The full pBRDF of a block, as 16 rows of lanes (row-major entry index first).
+/// The full pBRDF of a block, as 16 rows of lanes (row-major entry index first): the Fresnel
+/// amplitudes, `g·(A, B, C, S)`, the rotations and
+/// `F = R(η_r)·(g·M_d)·R(−η_i) + f_v·diag(1, 0, 0, 0)`, in one loop.
 #[inline(always)]
-pub(crate) fn mueller<M: Math, const N: usize>(f: &mut Front<'_, N>, out: &mut [Lanes<N>; 16]) {
-    let z = [0.0; N];
-    // Fresnel amplitudes and g·(A, B, C, S).
-    let mut gm = [z; 4];
+pub(crate) fn mueller<M: Math, const N: usize>(
+    f: &mut Front<N>,
+    geo: &Geom<N>,
+    out: &mut [Lanes<N>; 16],
+) {
     for j in 0..N {
-        let c = f.geo.facet.get(j).cos_beta;
+        let c = geo.facet.get(j).cos_beta;
         let (n2r, n2i, qr, qi) = (f.n2r[j], f.n2i[j], f.qr[j], f.qi[j]);
         let [rs2, rp2, inv_s, inv_p] = fresnel::reflectances::<M>(n2r, n2i, c, qr, qi);
         let amp = fresnel::amplitudes::<M>(n2r, n2i, c, qr, qi, inv_s, inv_p);
         let coef = mueller::diagonal_coefficients::<M>(rs2, rp2, amp);
         let g = terms::flush_subnormal(f.g[j], coef[0]);
-        for k in 0..4 {
-            gm[k][j] = g * coef[k];
-        }
-    }
-    // The rotations.
-    let mut rot = [z; 4];
-    for j in 0..N {
-        let p = [
-            f.geo.pairs[0][j],
-            f.geo.pairs[1][j],
-            f.geo.pairs[2][j],
-            f.geo.pairs[3][j],
+        let pairs = [
+            geo.pairs[0][j],
+            geo.pairs[1][j],
+            geo.pairs[2][j],
+            geo.pairs[3][j],
         ];
-        [rot[0][j], rot[1][j], rot[2][j], rot[3][j]] = angles::rotations::<M>(p);
-    }
-    // F = R(η_r)·(g·M_d)·R(−η_i) + f_v·diag(1, 0, 0, 0).
-    for j in 0..N {
-        let v = mueller::facet_pbrdf::<M>(
-            [gm[0][j], gm[1][j], gm[2][j], gm[3][j]],
-            f.fv[j],
-            [rot[0][j], rot[1][j], rot[2][j], rot[3][j]],
-        );
-        let valid = f.geo.valid[j];
+        let v =
+            mueller::facet_pbrdf::<M>(coef.map(|x| g * x), f.fv[j], angles::rotations::<M>(pairs));
+        let valid = geo.valid[j];
         f.fallback[j] |= valid && v[0] > 0.0 && v[0] < TINY;
         for (o, x) in out.iter_mut().zip(v) {
             o[j] = if valid { x } else { 0.0 };

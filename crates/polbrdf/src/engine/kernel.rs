@@ -5,7 +5,7 @@
 
 #![allow(clippy::needless_range_loop)]
 
-use crate::engine::block::{self, BlockIn, Geom, IndexLanes, Lanes};
+use crate::engine::block::{self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes};
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
 use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
@@ -661,13 +661,12 @@ impl Source for &[Geometry] {
     }
 }
 
-/// Elements `start .. start + len` (len ≤ N) of `src`; the rest of the block repeats element
-/// `start` (valid input, results discarded).
+/// Elements `start .. start + len` (len ≤ N) of `src` into `b`; the rest of the block repeats
+/// element `start` (valid input, results discarded).
 #[inline(always)]
-fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize) -> BlockIn<N> {
-    let mut b = BlockIn::<N>::zeroed();
+fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize, b: &mut BlockIn<N>) {
     if len == N {
-        src.load_block(start, &mut b);
+        src.load_block(start, b);
     } else {
         for j in 0..N {
             [b.ti[j], b.pi[j], b.tr[j], b.pr[j]] = src.get(start + if j < len { j } else { 0 });
@@ -678,18 +677,19 @@ fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize) -> BlockIn
         b.ti[j] += 0.0;
         b.tr[j] += 0.0;
     }
-    b
 }
 
 /// Where the geometry part of each block comes from, and the one-geometry path of an element.
 trait Blocks {
-    /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`.
-    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-        &self,
+    /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`:
+    /// computed in `scratch` (and returned from there) or taken from where it was prepared.
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
         start: usize,
         len: usize,
         phi_n: bool,
-    ) -> Geom<N>;
+        scratch: &'s mut GeomScratch<N>,
+    ) -> &'s Geom<N>;
 
     /// Element `i` by the one-geometry path.
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation;
@@ -700,13 +700,16 @@ struct Computed<S>(S);
 
 impl<S: Source> Blocks for Computed<S> {
     #[inline(always)]
-    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-        &self,
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
         start: usize,
         len: usize,
         phi_n: bool,
-    ) -> Geom<N> {
-        block::geometry::<M, N, PAIRS>(&load::<S, N>(&self.0, start, len), phi_n)
+        scratch: &'s mut GeomScratch<N>,
+    ) -> &'s Geom<N> {
+        load::<S, N>(&self.0, start, len, &mut scratch.input);
+        block::geometry::<M, N, PAIRS>(scratch, phi_n);
+        &scratch.geo
     }
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
@@ -725,15 +728,17 @@ struct Variables<'v>(&'v [AngleVariables]);
 
 impl Blocks for Variables<'_> {
     #[inline(always)]
-    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-        &self,
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
         start: usize,
         len: usize,
         _phi_n: bool,
-    ) -> Geom<N> {
+        scratch: &'s mut GeomScratch<N>,
+    ) -> &'s Geom<N> {
         let v: [AngleVariables; N] =
             std::array::from_fn(|j| self.0[start + if j < len { j } else { 0 }]);
-        block::geometry_of_variables(&v)
+        block::geometry_of_variables(&v, &mut scratch.geo);
+        &scratch.geo
     }
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
@@ -830,37 +835,19 @@ struct PreparedRange<'p> {
 
 impl Blocks for PreparedRange<'_> {
     #[inline(always)]
-    fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-        &self,
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
         start: usize,
         _len: usize,
         _phi_n: bool,
-    ) -> Geom<N> {
+        _scratch: &'s mut GeomScratch<N>,
+    ) -> &'s Geom<N> {
         // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
         // partial last block was padded when prepared, as `load` pads.)
-        assert!(
-            N == BLOCK && start.is_multiple_of(BLOCK),
-            "prepared blocks of {BLOCK}"
-        );
-        let g = &self.p.blocks[self.first + start / BLOCK];
-        let z = [0.0; N];
-        let mut out = Geom {
-            valid: [false; N],
-            out_of_range: [false; N],
-            facet: block::FacetLanes::from_columns([z; 10]),
-            pairs: [z; 4],
-            angles: [z; 4],
-        };
-        out.valid.copy_from_slice(&g.valid);
-        out.out_of_range.copy_from_slice(&g.out_of_range);
-        out.facet.copy_from(&g.facet);
-        for (o, i) in out.pairs.iter_mut().zip(&g.pairs) {
-            o.copy_from_slice(i);
-        }
-        for (o, i) in out.angles.iter_mut().zip(&g.angles) {
-            o.copy_from_slice(i);
-        }
-        out
+        assert!(start.is_multiple_of(BLOCK), "prepared blocks of {BLOCK}");
+        let g: &dyn std::any::Any = &self.p.blocks[self.first + start / BLOCK];
+        g.downcast_ref::<Geom<N>>()
+            .expect("prepared blocks are evaluated in blocks of BLOCK")
     }
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
@@ -879,6 +866,19 @@ impl Blocks for PreparedRange<'_> {
 trait MuellerOut: Sized {
     fn set(&mut self, v: &[f64; 16]);
 
+    /// Writes a block given as 16 rows of lanes (entry-major; the first `dst.len()` lanes),
+    /// through `staged`; returns as [`MuellerOut::write_block`].
+    #[inline(always)]
+    fn write_rows<const N: usize>(
+        dst: &mut [Self],
+        rows: &[Lanes<N>; 16],
+        staged: &mut [[f64; 16]; N],
+        stream: bool,
+    ) -> bool {
+        transpose(rows, staged);
+        Self::write_block(dst, staged, stream)
+    }
+
     /// Copies a block of results out; `stream`: with non-temporal stores where possible (for
     /// outputs much larger than the caches, which are then not read back soon). Returns
     /// whether a finite value became infinite (only a narrower format can overflow).
@@ -895,6 +895,24 @@ impl MuellerOut for [f64; 16] {
     #[inline(always)]
     fn set(&mut self, v: &[f64; 16]) {
         *self = *v;
+    }
+
+    /// A whole block without streaming is transposed straight into `dst`.
+    #[inline(always)]
+    fn write_rows<const N: usize>(
+        dst: &mut [Self],
+        rows: &[Lanes<N>; 16],
+        staged: &mut [[f64; 16]; N],
+        stream: bool,
+    ) -> bool {
+        match <&mut [Self; N]>::try_from(&mut *dst) {
+            Ok(whole) if !stream => transpose(rows, whole),
+            _ => {
+                transpose(rows, staged);
+                Self::write_block(dst, staged, stream);
+            }
+        }
+        false
     }
 
     #[inline(always)]
@@ -959,6 +977,68 @@ impl MuellerOut for [f32; 16] {
     }
 }
 
+/// 16 rows of lanes (entry-major) into row-major 4×4 results (element-major): with AVX
+/// register shuffles in 4×4 tiles where the CPU has them.
+#[inline(always)]
+fn transpose<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx") {
+        // SAFETY: the CPU has AVX.
+        unsafe { transpose_avx(rows, out) };
+        return;
+    }
+    transpose_tail(rows, out, 0);
+}
+
+/// Elements `from ..` of [`transpose`], one entry at a time.
+#[inline(always)]
+fn transpose_tail<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N], from: usize) {
+    for j in from..N {
+        for e in 0..16 {
+            out[j][e] = rows[e][j];
+        }
+    }
+}
+
+/// [`transpose`] with AVX: each 4×4 tile of (entries × elements) by two unpacks and two
+/// lane permutes per pair of rows.
+///
+/// # Safety
+/// The CPU must support AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn transpose_avx<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N]) {
+    use std::arch::x86_64::{
+        _mm256_loadu_pd, _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
+        _mm256_unpacklo_pd,
+    };
+    let whole = N - N % 4;
+    for j0 in (0..whole).step_by(4) {
+        for e0 in (0..16).step_by(4) {
+            // SAFETY: j0 + 4 ≤ N and e0 + 4 ≤ 16: every load and store is in bounds.
+            unsafe {
+                // (No closures here: they would not inherit the target feature.)
+                let a = _mm256_loadu_pd(rows[e0][j0..].as_ptr());
+                let b = _mm256_loadu_pd(rows[e0 + 1][j0..].as_ptr());
+                let c = _mm256_loadu_pd(rows[e0 + 2][j0..].as_ptr());
+                let d = _mm256_loadu_pd(rows[e0 + 3][j0..].as_ptr());
+                let (t0, t1) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+                let (t2, t3) = (_mm256_unpacklo_pd(c, d), _mm256_unpackhi_pd(c, d));
+                let r0 = _mm256_permute2f128_pd::<0x20>(t0, t2);
+                let r1 = _mm256_permute2f128_pd::<0x20>(t1, t3);
+                let r2 = _mm256_permute2f128_pd::<0x31>(t0, t2);
+                let r3 = _mm256_permute2f128_pd::<0x31>(t1, t3);
+                _mm256_storeu_pd(out[j0][e0..].as_mut_ptr(), r0);
+                _mm256_storeu_pd(out[j0 + 1][e0..].as_mut_ptr(), r1);
+                _mm256_storeu_pd(out[j0 + 2][e0..].as_mut_ptr(), r2);
+                _mm256_storeu_pd(out[j0 + 3][e0..].as_mut_ptr(), r3);
+            }
+        }
+    }
+    transpose_tail(rows, out, whole);
+}
+
 /// Orders non-temporal stores before what follows (they are weakly ordered).
 #[inline(always)]
 fn store_fence() {
@@ -1013,31 +1093,28 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
     fn run<M: Math>(&mut self) {
         let k = self.kernel;
         let phi_n = k.params.uses_phi_n();
+        // Made once per job, overwritten block by block.
+        let mut scratch = GeomScratch::<N>::zeroed();
+        let mut front = Front::<N>::zeroed();
         let mut rows = [[0.0; N]; 16];
         let mut staged = [[0.0; 16]; N];
         let mut cache = SpectralCache::new();
         for (blk, dst) in self.out.chunks_mut(N).enumerate() {
             let start = blk * N;
-            let geo = self.src.geometry::<M, N, true>(start, dst.len(), phi_n);
+            let geo = self
+                .src
+                .geometry::<M, N, true>(start, dst.len(), phi_n, &mut scratch);
             let idx = self.index.lanes::<N>(start, dst.len(), &mut cache);
-            let mut front = block::front::<M, N>(&k.params, &geo, &idx);
-            block::mueller::<M, N>(&mut front, &mut rows);
-            // Transpose into a row-major staging block (in L1), then copy out contiguously.
-            for e in 0..16 {
-                for j in 0..N {
-                    staged[j][e] = rows[e][j];
-                }
-            }
+            block::front::<M, N>(&k.params, geo, &idx, &mut front);
+            block::mueller::<M, N>(&mut front, geo, &mut rows);
+            self.overflow |= O::write_rows(dst, &rows, &mut staged, k.stream);
             for j in 0..dst.len() {
                 if front.fallback[j] {
-                    staged[j] = self
-                        .src
-                        .reference(k, self.index, start + j)
-                        .pbrdf
-                        .to_row_major();
+                    let v = self.src.reference(k, self.index, start + j);
+                    let v = v.pbrdf.to_row_major();
+                    self.overflow |= O::write_block(&mut dst[j..j + 1], &[v], false);
                 }
             }
-            self.overflow |= O::write_block(dst, &staged, k.stream);
         }
         if k.stream {
             store_fence();
@@ -1063,12 +1140,16 @@ impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_
         let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
         let n = self.brdf.len();
         let mut cache = SpectralCache::new();
+        let mut scratch = GeomScratch::<N>::zeroed();
+        let mut front = Front::<N>::zeroed();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
-            let geo = self.src.geometry::<M, N, AOLP>(start, len, phi_n);
+            let geo = self
+                .src
+                .geometry::<M, N, AOLP>(start, len, phi_n, &mut scratch);
             let idx = self.index.lanes::<N>(start, len, &mut cache);
-            let mut front = block::front::<M, N>(&k.params, &geo, &idx);
-            block::brdf_dolp::<M, N, AOLP>(&mut front, &mut lanes);
+            block::front::<M, N>(&k.params, geo, &idx, &mut front);
+            block::brdf_dolp::<M, N, AOLP>(&mut front, geo, &mut lanes);
             self.brdf[start..start + len].copy_from_slice(&lanes[0][..len]);
             self.dolp[start..start + len].copy_from_slice(&lanes[1][..len]);
             if AOLP {
@@ -1097,12 +1178,15 @@ impl Job for PrepareJob<'_, '_> {
     #[inline(always)]
     fn run<M: Math>(&mut self) {
         let n = self.src.cols[0].len();
+        let mut scratch = GeomScratch::<BLOCK>::zeroed();
         for start in (0..n).step_by(BLOCK) {
             let len = BLOCK.min(n - start);
-            let b = load::<_, BLOCK>(self.src, start, len);
+            load::<_, BLOCK>(self.src, start, len, &mut scratch.input);
             // ΦN always: the prepared geometry serves every material, eq3 ones too.
-            let geo = block::geometry::<M, BLOCK, true>(&b, true);
-            self.out.push(geo, len);
+            block::geometry::<M, BLOCK, true>(&mut scratch, true);
+            let b = &scratch.input;
+            scratch.geo.angles = [b.ti, b.pi, b.tr, b.pr];
+            self.out.push(scratch.geo.clone(), len);
         }
     }
 }
@@ -1151,14 +1235,18 @@ mod tests {
                     b.pr[j] = rng.range(0.0, 2.0 * std::f64::consts::PI);
                 }
                 let idx = k.index.lanes::<BLOCK>(0, BLOCK, &mut SpectralCache::new());
-                let geo = block::geometry::<FastUnfused, BLOCK, true>(&b, false);
+                let mut s = GeomScratch::<BLOCK>::zeroed();
+                s.input = b;
+                block::geometry::<FastUnfused, BLOCK, true>(&mut s, false);
                 let mut rows = [[0.0; BLOCK]; 16];
-                let mut f = block::front::<FastUnfused, BLOCK>(&k.params, &geo, &idx);
-                block::mueller::<FastUnfused, BLOCK>(&mut f, &mut rows);
+                let mut f = Front::<BLOCK>::zeroed();
+                block::front::<FastUnfused, BLOCK>(&k.params, &s.geo, &idx, &mut f);
+                block::mueller::<FastUnfused, BLOCK>(&mut f, &s.geo, &mut rows);
                 assert!(!f.fallback.iter().any(|f| *f), "{}", preset.name);
                 let mut lanes = [[0.0; BLOCK]; 3];
-                let mut f = block::front::<FastUnfused, BLOCK>(&k.params, &geo, &idx);
-                block::brdf_dolp::<FastUnfused, BLOCK, true>(&mut f, &mut lanes);
+                let mut f = Front::<BLOCK>::zeroed();
+                block::front::<FastUnfused, BLOCK>(&k.params, &s.geo, &idx, &mut f);
+                block::brdf_dolp::<FastUnfused, BLOCK, true>(&mut f, &s.geo, &mut lanes);
                 assert!(!f.fallback.iter().any(|f| *f), "{}", preset.name);
             }
         }

@@ -83,6 +83,12 @@ impl Shadowing {
         self.azimuth
     }
 
+    /// The same τ and Ω with another azimuth setting.
+    #[inline(always)]
+    pub fn with_azimuth(self, azimuth: AzimuthTerm) -> Self {
+        Self { azimuth, ..self }
+    }
+
     /// SO at the given angle variables (eq. 3). Equals 1 at specular (θN = 0) and at
     /// backscatter (β = 0).
     pub fn eval(&self, v: &AngleVariables) -> f64 {
