@@ -991,18 +991,37 @@ pub fn fmt_f64(v: f64) -> String {
 }
 
 /// Appends [`fmt_f64`]'s text of `v` to `out`, without allocating: shortest round-trip digits
-/// by `ryu` in the notation of Rust's `{:?}` (Rust's own formatting is used in `[1e-5, 1e-4)`
-/// and from 1e16 on, where ryu's notation differs). Where two last digits are equally short and
-/// both round-trip, ryu's choice may differ from Rust's: the value read back is the same.
+/// by `zmij` (Schubfach), in the notation of Rust's `{:?}` — zmij writes `[1e-5, 1e-4)` in
+/// positional notation and exponents from 1e16 on with a `+`, which are rewritten here (tested
+/// against `{:?}`). Where two last digits are equally short and both round-trip, zmij's choice
+/// may differ from Rust's: the value read back is the same.
 pub fn fmt_f64_into(v: f64, out: &mut Vec<u8>) {
     let v = v + 0.0;
+    let mut b = zmij::Buffer::new();
+    let text = b.format(v).as_bytes();
     let a = v.abs();
-    if !(1e-5..1e-4).contains(&a) && a < 1e16 {
-        let mut b = ryu::Buffer::new();
-        out.extend_from_slice(b.format(v).as_bytes());
+    if (1e-5..1e-4).contains(&a) {
+        // "0.0000d…" (or "-0.0000d…") → "d.…e-5".
+        let (sign, digits) = match text.split_first() {
+            Some((b'-', rest)) => (&text[..1], rest),
+            _ => (&text[..0], text),
+        };
+        match digits.strip_prefix(b"0.0000") {
+            Some(d) if !d.is_empty() => {
+                out.extend_from_slice(sign);
+                out.push(d[0]);
+                if d.len() > 1 {
+                    out.push(b'.');
+                    out.extend_from_slice(&d[1..]);
+                }
+                out.extend_from_slice(b"e-5");
+            }
+            _ => out.extend_from_slice(text),
+        }
+    } else if a >= 1e16 {
+        out.extend(text.iter().filter(|c| **c != b'+'));
     } else {
-        use std::io::Write;
-        write!(out, "{v:?}").expect("writing to memory cannot fail");
+        out.extend_from_slice(text);
     }
 }
 

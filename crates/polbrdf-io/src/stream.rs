@@ -43,11 +43,61 @@ impl Format {
     }
 }
 
+/// The CSV fields of a chunk's rows in one text buffer (no allocation per row).
+#[derive(Debug, Clone, Default)]
+pub struct TextRows {
+    text: String,
+    /// End of each field in `text`; row `k`'s fields are `ends[k·width .. (k+1)·width]`.
+    ends: Vec<usize>,
+    width: usize,
+}
+
+impl TextRows {
+    fn with_capacity(rows: usize, width: usize) -> Self {
+        Self {
+            text: String::with_capacity(rows * width * 8),
+            ends: Vec::with_capacity(rows * width),
+            width,
+        }
+    }
+
+    /// Appends a record (with `width` fields: the reader checks every record's length).
+    fn push(&mut self, r: &crate::csv_io::Record<'_>) {
+        debug_assert_eq!(r.len(), self.width, "record length");
+        for f in r.iter() {
+            self.text.push_str(f);
+            self.ends.push(self.text.len());
+        }
+    }
+
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        self.ends.len().checked_div(self.width).unwrap_or(0)
+    }
+
+    /// True without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Field `i` of row `k`.
+    pub fn field(&self, k: usize, i: usize) -> &str {
+        let n = k * self.width + i;
+        let start = if n == 0 { 0 } else { self.ends[n - 1] };
+        &self.text[start..self.ends[n]]
+    }
+
+    /// The fields of row `k`, in order.
+    pub fn row(&self, k: usize) -> impl Iterator<Item = &str> + '_ {
+        (0..self.width).map(move |i| self.field(k, i))
+    }
+}
+
 /// The input columns passed through to the output, for a chunk's rows.
 #[derive(Debug, Clone)]
 pub enum Passthrough {
-    /// CSV fields as written, one record per row.
-    Text(Vec<csv::StringRecord>),
+    /// CSV fields as written.
+    Text(TextRows),
     /// Numbers, row-major (`.npy` input).
     Numbers(Vec<f64>),
 }
@@ -191,31 +241,33 @@ impl GeometryReader {
         let [a, b, c, d] = self.angles;
         let chunk = match &mut self.src {
             Src::Csv(rdr) => {
-                let mut records = Vec::with_capacity(max.min(CHUNK_ROWS));
-                let mut lines = Vec::with_capacity(max.min(CHUNK_ROWS));
-                while records.len() < max {
+                let cap = max.min(CHUNK_ROWS);
+                let mut records = TextRows::with_capacity(cap, self.headers.len());
+                let mut lines = Vec::with_capacity(cap);
+                while lines.len() < max {
                     let Some(r) = rdr.next_record()? else {
                         break;
                     };
                     lines.push(r.line);
-                    records.push(r.iter().collect::<csv::StringRecord>());
+                    records.push(&r);
                 }
                 // Parsed in parallel; the first bad row (in file order) is the error.
                 use rayon::prelude::*;
-                let parsed: Vec<Result<Geometry>> = records
+                let parsed: Vec<Result<Geometry>> = lines
                     .par_iter()
-                    .zip(&lines)
-                    .map(|(rec, &line)| {
-                        row_geometry(&path, line, [&rec[a], &rec[b], &rec[c], &rec[d]])
+                    .enumerate()
+                    .map(|(k, &line)| {
+                        let f = |i| records.field(k, i);
+                        row_geometry(&path, line, [f(a), f(b), f(c), f(d)])
                     })
                     .collect();
                 let geometries = parsed.into_iter().collect::<Result<Vec<Geometry>>>()?;
                 let wavelengths = match self.wavelength {
                     Some(w) => Some(
-                        records
+                        lines
                             .iter()
-                            .zip(&lines)
-                            .map(|(rec, &line)| row_wavelength(&path, line, &rec[w]))
+                            .enumerate()
+                            .map(|(k, &line)| row_wavelength(&path, line, records.field(k, w)))
                             .collect::<Result<Vec<f64>>>()?,
                     ),
                     None => None,
@@ -497,7 +549,7 @@ impl ResultWriter {
 fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &Mueller) {
     match columns {
         Passthrough::Text(recs) => {
-            for field in &recs[k] {
+            for field in recs.row(k) {
                 push_csv_field(line, field);
                 line.push(b',');
             }
@@ -553,7 +605,7 @@ fn fill_npy_rows(
     for (k, f) in pbrdf.iter().enumerate() {
         match &chunk.columns {
             Passthrough::Text(recs) => {
-                for (field, name) in recs[k].iter().zip(headers) {
+                for (field, name) in recs.row(k).zip(headers) {
                     let v =
                         parse_number(input, chunk.lines[k], name, field).map_err(|e| match e {
                             Error::Field {
