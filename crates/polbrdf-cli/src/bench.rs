@@ -10,7 +10,7 @@ use crate::error::CliError;
 use polbrdf::analysis::emission::{emissivities, emissivity, Emissivity};
 use polbrdf::analysis::facets::FacetRule;
 use polbrdf::batch;
-use polbrdf::engine::{Engine, IndexColumns, Kernel};
+use polbrdf::engine::{elementary_into, Elementary, Engine, IndexColumns, Kernel};
 use polbrdf::Geometry;
 use polbrdf::GeometryBatch;
 use rayon::prelude::*;
@@ -80,15 +80,64 @@ fn write_bandwidth(threads: usize, repeats: usize, n: usize) -> Result<f64, CliE
     Ok(size_of_val(buf.as_slice()) as f64 / s)
 }
 
-/// The CPU model from /proc/cpuinfo ("model name"), or the architecture elsewhere.
+/// Nanoseconds per element of each of the kernel's elementary operations on one thread
+/// (4096-element arrays, in L1, at the kernel's SIMD level), medians of `repeats`; and the
+/// floor they set: what one full-Mueller element of `paint` needs of them
+/// ([`FLOOR_COUNTS`]).
+fn elementary_ns(repeats: usize, level: polbrdf::engine::SimdLevel) -> Vec<(Elementary, f64)> {
+    const N: usize = 4096;
+    const REPS: usize = 200;
+    let x: Vec<f64> = (0..N)
+        .map(|j| 1.5 * ((j * 37) % N) as f64 / N as f64)
+        .collect();
+    let y: Vec<f64> = (0..N)
+        .map(|j| 1.3 * ((j * 71) % N) as f64 / N as f64)
+        .collect();
+    let mut out = vec![0.0; N];
+    Elementary::ALL
+        .iter()
+        .map(|&op| {
+            let s = median_seconds(repeats, || {
+                for _ in 0..REPS {
+                    elementary_into(level, op, &x, &y, &mut out).expect("the kernel's level");
+                    black_box(&mut out);
+                }
+            });
+            (op, s / (N * REPS) as f64 * 1e9)
+        })
+        .collect()
+}
+
+/// How many of each elementary operation one full-Mueller element of `paint` (real index,
+/// shadowing without the azimuth factor) takes in the kernel: the sines and cosines of θi, θr,
+/// Δ/2, (θi − θr)/2; the arctangents of θN and β; the exponentials of D and SO; the square roots
+/// of |s_xy|, |s|, sin β and q; the divisions of the surface term, the Fresnel reflectances and
+/// the rotations (the arctangents' own are in theirs).
+const FLOOR_COUNTS: [(Elementary, f64); 5] = [
+    (Elementary::SinCos, 4.0),
+    (Elementary::Atan2, 2.0),
+    (Elementary::Exp, 2.0),
+    (Elementary::Sqrt, 4.0),
+    (Elementary::Div, 3.0),
+];
+
+/// The CPU model from /proc/cpuinfo ("model name", with the family and model numbers, which
+/// tell a virtual machine's generic name apart), or the architecture elsewhere.
 fn cpu_model() -> String {
     std::fs::read_to_string("/proc/cpuinfo")
         .ok()
         .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split_once(':'))
-                .map(|(_, v)| v.trim().to_string())
+            let field = |key: &str| {
+                s.lines()
+                    .find(|l| l.split(':').next().is_some_and(|k| k.trim() == key))
+                    .and_then(|l| l.split_once(':'))
+                    .map(|(_, v)| v.trim().to_string())
+            };
+            let name = field("model name")?;
+            Some(match (field("cpu family"), field("model")) {
+                (Some(f), Some(m)) => format!("{name}, family {f} model {m}"),
+                _ => name,
+            })
         })
         .unwrap_or_else(|| std::env::consts::ARCH.to_string())
 }
@@ -441,6 +490,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .map(|&t| run_with(t, args.repeats, &material, &batch))
         .collect::<Result<Vec<_>, _>>()?;
     let bandwidth = write_bandwidth(threads, args.repeats, n)?;
+    let elementary = elementary_ns(args.repeats, Kernel::new(&material).level());
+    let floor_ns: f64 = FLOOR_COUNTS
+        .iter()
+        .map(|(op, k)| {
+            k * elementary
+                .iter()
+                .find(|(o, _)| o == op)
+                .map_or(0.0, |e| e.1)
+        })
+        .sum();
     let index = run_index(args.repeats, &material, &batch)?;
     let emission = run_emission(args.repeats, threads)?;
     let kernel = Kernel::new(&material);
@@ -496,6 +555,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 "bytes_per_s": bandwidth,
                 "full_mueller_roofline_evals_per_s": bandwidth / 128.0,
                 "full_mueller_f32_roofline_evals_per_s": bandwidth / 64.0,
+            },
+            "elementary_ns_per_element_one_thread": elementary
+                .iter()
+                .map(|(op, ns)| (op.name().to_string(), json!(ns)))
+                .collect::<serde_json::Map<_, _>>(),
+            "elementary_floor": {
+                "counts": FLOOR_COUNTS
+                    .iter()
+                    .map(|(op, k)| (op.name().to_string(), json!(k)))
+                    .collect::<serde_json::Map<_, _>>(),
+                "ns_per_element_one_thread": floor_ns,
+                "max_full_mueller_evals_per_s_one_thread": 1e9 / floor_ns,
             },
             "per_element_index": {
                 "threads": threads,
@@ -566,6 +637,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             bandwidth / 1e9,
             bandwidth / 128e6,
             bandwidth / 64e6
+        );
+        let list: Vec<String> = elementary
+            .iter()
+            .map(|(op, ns)| format!("{} {ns:.2}", op.name()))
+            .collect();
+        let counts: Vec<String> = FLOOR_COUNTS
+            .iter()
+            .map(|(op, k)| format!("{k} {}", op.name()))
+            .collect();
+        println!(
+            "elementary functions (1 thread, ns per element): {}; one full-Mueller element \
+             needs {} = {floor_ns:.1} ns: at most {:.1} M/s per thread with nothing else",
+            list.join(", "),
+            counts.join(" + "),
+            1e3 / floor_ns
         );
         println!();
         println!(

@@ -25,6 +25,17 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
             assert!(r[key].as_f64().unwrap() > 0.0, "{key}");
         }
     }
+    // The elementary-function floor: every operation timed, and the floor their weighted sum.
+    let el = &doc["elementary_ns_per_element_one_thread"];
+    let floor = &doc["elementary_floor"];
+    let mut sum = 0.0;
+    for op in ["sincos", "atan2", "exp", "sqrt", "div"] {
+        let ns = el[op].as_f64().unwrap_or_else(|| panic!("{op}: {el}"));
+        assert!(ns.is_finite() && ns > 0.0, "{op} = {ns}");
+        sum += floor["counts"][op].as_f64().unwrap() * ns;
+    }
+    let floor_ns = floor["ns_per_element_one_thread"].as_f64().unwrap();
+    assert!((floor_ns - sum).abs() <= 1e-9 * sum, "{floor_ns} vs {sum}");
     assert!(doc["single_eval_ns"]["kernel"].as_f64().unwrap() > 0.0);
     assert!(doc["single_eval_ns"]["reference"].as_f64().unwrap() > 0.0);
     assert!(doc["cpu"]["model"].as_str().is_some_and(|s| !s.is_empty()));

@@ -635,3 +635,38 @@ fn streamed_outputs_equal_cached_ones_bit_for_bit() {
         assert!(deviation(&cached[i], &want) <= TOL, "element {i}");
     }
 }
+
+#[test]
+fn elementary_functions_for_benchmarks_match_the_standard_library() {
+    use polbrdf::engine::{elementary_into, Elementary};
+    let n = 1000;
+    let x: Vec<f64> = (0..n).map(|j| 0.0015 * j as f64).collect();
+    let y: Vec<f64> = (0..n).map(|j| 0.0011 * (n - j) as f64).collect();
+    for level in SimdLevel::supported() {
+        for op in Elementary::ALL {
+            let mut out = vec![f64::NAN; n];
+            elementary_into(level, op, &x, &y, &mut out).unwrap();
+            for j in 0..n {
+                let want = match op {
+                    Elementary::SinCos => x[j].sin() + x[j].cos(),
+                    Elementary::Atan2 => y[j].atan2(x[j]),
+                    Elementary::Exp => (-x[j]).exp(),
+                    Elementary::Sqrt => x[j].sqrt(),
+                    Elementary::Div => y[j] / x[j],
+                };
+                let ok = if want.is_finite() {
+                    (out[j] - want).abs() <= 4.0 * f64::EPSILON * want.abs().max(1e-300)
+                } else {
+                    out[j] == want
+                };
+                assert!(
+                    ok,
+                    "{} {} at {j}: {} vs {want}",
+                    level.name(),
+                    op.name(),
+                    out[j]
+                );
+            }
+        }
+    }
+}

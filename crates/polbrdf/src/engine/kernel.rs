@@ -1191,6 +1191,109 @@ impl Job for PrepareJob<'_, '_> {
     }
 }
 
+/// One of the kernel's elementary operations, for [`elementary_into`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Elementary {
+    /// `sin x + cos x` (one [`Math::sincos`]).
+    SinCos,
+    /// `atan2(y, x)` for `x, y ≥ 0` ([`Math::atan2_pos`]).
+    Atan2,
+    /// `exp(−x)` for `x ≥ 0` ([`Math::exp_neg`]).
+    Exp,
+    /// `sqrt x` (the hardware instruction).
+    Sqrt,
+    /// `y / x` (the hardware instruction).
+    Div,
+}
+
+impl Elementary {
+    /// Every operation.
+    pub const ALL: [Elementary; 5] = [
+        Elementary::SinCos,
+        Elementary::Atan2,
+        Elementary::Exp,
+        Elementary::Sqrt,
+        Elementary::Div,
+    ];
+
+    /// A short name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Elementary::SinCos => "sincos",
+            Elementary::Atan2 => "atan2",
+            Elementary::Exp => "exp",
+            Elementary::Sqrt => "sqrt",
+            Elementary::Div => "div",
+        }
+    }
+}
+
+/// `out[j] = op(x[j], y[j])` with the kernel's elementary functions at `level`, vectorized as
+/// the kernel's stages are — for benchmarks that bound the kernel's cost from below (the model
+/// needs, per element, four sine/cosine pairs, two arctangents, two exponentials; `polbrdf
+/// bench` times them). `None` when the CPU does not support `level`.
+///
+/// # Panics
+/// When `x`, `y` and `out` differ in length.
+pub fn elementary_into(
+    level: SimdLevel,
+    op: Elementary,
+    x: &[f64],
+    y: &[f64],
+    out: &mut [f64],
+) -> Option<()> {
+    assert!(x.len() == out.len() && y.len() == out.len(), "lengths");
+    if !level.is_supported() {
+        return None;
+    }
+    let mut job = ElementaryJob { op, x, y, out };
+    dispatch(level, &mut job);
+    Some(())
+}
+
+struct ElementaryJob<'a> {
+    op: Elementary,
+    x: &'a [f64],
+    y: &'a [f64],
+    out: &'a mut [f64],
+}
+
+impl Job for ElementaryJob<'_> {
+    #[inline(always)]
+    fn run<M: Math>(&mut self) {
+        let (x, y) = (self.x, self.y);
+        let out = &mut *self.out;
+        match self.op {
+            Elementary::SinCos => {
+                for j in 0..out.len() {
+                    let (s, c) = M::sincos(x[j]);
+                    out[j] = s + c;
+                }
+            }
+            Elementary::Atan2 => {
+                for j in 0..out.len() {
+                    out[j] = M::atan2_pos(y[j], x[j]);
+                }
+            }
+            Elementary::Exp => {
+                for j in 0..out.len() {
+                    out[j] = M::exp_neg(-x[j]);
+                }
+            }
+            Elementary::Sqrt => {
+                for j in 0..out.len() {
+                    out[j] = x[j].sqrt();
+                }
+            }
+            Elementary::Div => {
+                for j in 0..out.len() {
+                    out[j] = y[j] / x[j];
+                }
+            }
+        }
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 mod x86 {
     //! The jobs compiled for AVX2+FMA and for AVX-512.

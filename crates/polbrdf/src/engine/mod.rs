@@ -36,5 +36,5 @@ pub mod kernel;
 pub mod simd;
 
 pub use batch::{Engine, Precision};
-pub use kernel::{IndexColumns, Kernel, Prepared, BLOCK};
+pub use kernel::{elementary_into, Elementary, IndexColumns, Kernel, Prepared, BLOCK};
 pub use simd::{simd_level, SimdLevel};
