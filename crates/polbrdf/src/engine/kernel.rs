@@ -943,6 +943,35 @@ impl MuellerOut for [f32; 16] {
         *self = v.map(|x| x as f32);
     }
 
+    /// A whole block without streaming: rounded to f32 entry-major (one vectorized loop, with
+    /// the overflow check), then transposed straight into `dst`.
+    #[inline(always)]
+    fn write_rows<const N: usize>(
+        dst: &mut [Self],
+        rows: &[Lanes<N>; 16],
+        staged: &mut [[f64; 16]; N],
+        stream: bool,
+    ) -> bool {
+        match <&mut [Self; N]>::try_from(&mut *dst) {
+            Ok(whole) if !stream => {
+                let mut narrow = [[0.0f32; N]; 16];
+                let mut overflow = false;
+                for (o, r) in narrow.iter_mut().zip(rows) {
+                    for (y, x) in o.iter_mut().zip(r) {
+                        *y = *x as f32;
+                        overflow |= y.is_infinite() & x.is_finite();
+                    }
+                }
+                transpose_f32(&narrow, whole);
+                overflow
+            }
+            _ => {
+                transpose(rows, staged);
+                Self::write_block(dst, staged, stream)
+            }
+        }
+    }
+
     #[inline(always)]
     fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
         let n = dst.len().min(src.len());
@@ -990,14 +1019,53 @@ fn transpose<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N]) {
     transpose_tail(rows, out, 0);
 }
 
-/// Elements `from ..` of [`transpose`], one entry at a time.
+/// Elements `from ..` of [`transpose`] (or [`transpose_f32`]), one entry at a time.
 #[inline(always)]
-fn transpose_tail<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N], from: usize) {
+fn transpose_tail<T: Copy, const N: usize>(
+    rows: &[[T; N]; 16],
+    out: &mut [[T; 16]; N],
+    from: usize,
+) {
     for j in from..N {
         for e in 0..16 {
             out[j][e] = rows[e][j];
         }
     }
+}
+
+/// [`transpose`] of single-precision rows: with SSE shuffles (part of x86-64) in 4×4 tiles.
+#[inline(always)]
+fn transpose_f32<const N: usize>(rows: &[[f32; N]; 16], out: &mut [[f32; 16]; N]) {
+    #[cfg(not(target_arch = "x86_64"))]
+    let from = 0;
+    #[cfg(target_arch = "x86_64")]
+    let from = {
+        use std::arch::x86_64::{
+            _mm_loadu_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_storeu_ps, _mm_unpackhi_ps,
+            _mm_unpacklo_ps,
+        };
+        let whole = N - N % 4;
+        for j0 in (0..whole).step_by(4) {
+            for e0 in (0..16).step_by(4) {
+                // SAFETY: j0 + 4 ≤ N and e0 + 4 ≤ 16: every load and store is in bounds; SSE
+                // is part of x86-64.
+                unsafe {
+                    let a = _mm_loadu_ps(rows[e0][j0..].as_ptr());
+                    let b = _mm_loadu_ps(rows[e0 + 1][j0..].as_ptr());
+                    let c = _mm_loadu_ps(rows[e0 + 2][j0..].as_ptr());
+                    let d = _mm_loadu_ps(rows[e0 + 3][j0..].as_ptr());
+                    let (t0, t1) = (_mm_unpacklo_ps(a, b), _mm_unpackhi_ps(a, b));
+                    let (t2, t3) = (_mm_unpacklo_ps(c, d), _mm_unpackhi_ps(c, d));
+                    _mm_storeu_ps(out[j0][e0..].as_mut_ptr(), _mm_movelh_ps(t0, t2));
+                    _mm_storeu_ps(out[j0 + 1][e0..].as_mut_ptr(), _mm_movehl_ps(t2, t0));
+                    _mm_storeu_ps(out[j0 + 2][e0..].as_mut_ptr(), _mm_movelh_ps(t1, t3));
+                    _mm_storeu_ps(out[j0 + 3][e0..].as_mut_ptr(), _mm_movehl_ps(t3, t1));
+                }
+            }
+        }
+        whole
+    };
+    transpose_tail(rows, out, from);
 }
 
 /// [`transpose`] with AVX: each 4×4 tile of (entries × elements) by two unpacks and two
