@@ -7,8 +7,10 @@
 //! that change nothing but speed:
 //!
 //! - **Blocks, stage by stage** (`block`): [`kernel::BLOCK`] elements at a time, each stage a
-//!   loop over the block calling the formula functions once per lane into stack arrays
-//!   (structure of arrays, no heap allocation), which the compiler vectorizes across the block.
+//!   loop over the block calling the formula functions once per lane into per-job workspaces
+//!   (structure of arrays, zeroed once per job, no heap allocation), which the compiler
+//!   vectorizes across the block; the rows of a block are transposed into the row-major output
+//!   with 4×4 register shuffles.
 //! - **Polynomial elementary functions** ([`crate::numeric::math`]): branch-free sine/cosine,
 //!   exponential and arctangent within 2 ulp of the standard library, compiled for AVX-512,
 //!   AVX2+FMA and the build target's baseline and chosen at run time ([`simd`]).
