@@ -140,3 +140,78 @@ def test_eval_npy_matches_python_and_numpy_reads_it(tmp_path: Path) -> None:
     m = np.stack([a[f"m{k // 4}{k % 4}"] for k in range(16)], axis=-1).reshape(-1, 4, 4)
     np.testing.assert_allclose(m, f, rtol=1e-12, atol=1e-300)
     np.testing.assert_array_equal(a["brdf"], a["m00"])
+
+
+def test_eval_arrow_output_read_by_pyarrow_equals_csv(tmp_path: Path) -> None:
+    """`eval --output x.arrow` (Arrow IPC file) and `x.arrows` (stream) are tables pyarrow reads,
+    equal to the CSV output's values (CSV writes −0 as 0); a table written by pyarrow (Float32,
+    integer and text columns, several batches) is an `eval` input."""
+    pa = pytest.importorskip("pyarrow", reason="pyarrow is not installed (pip install pyarrow)")
+    ipc = pytest.importorskip("pyarrow.ipc")
+    g = geometries()[:200]
+    names = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"]
+    src = tmp_path / "g.csv"
+    with open(src, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow([*names, "label"])
+        w.writerows([*map(repr, row), f"r{k}"] for k, row in enumerate(g.tolist()))
+    assert CLI is not None
+
+    def run(inp: Path, out: Path) -> None:
+        subprocess.run(
+            [str(CLI), "eval", "--material", "paint", "--input", str(inp), "--output", str(out)],
+            check=True,
+        )
+
+    run(src, tmp_path / "out.csv")
+    run(src, tmp_path / "out.arrow")
+    run(src, tmp_path / "out.arrows")
+    with open(tmp_path / "out.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    for table in (
+        ipc.open_file(tmp_path / "out.arrow").read_all(),
+        ipc.open_stream(tmp_path / "out.arrows").read_all(),
+    ):
+        assert table.column_names == header
+        assert table.num_rows == 200
+        assert table.schema.field("label").type == pa.string()
+        for i, name in enumerate(header):
+            col = table.column(name)
+            if name == "label":
+                assert col.to_pylist() == [r[i] for r in body]
+                continue
+            assert col.type == pa.float64(), name
+            got = np.asarray(col.to_numpy(), dtype=np.float64) + 0.0
+            want = np.array([float(r[i]) for r in body])
+            np.testing.assert_array_equal(got.view(np.uint64), want.view(np.uint64), err_msg=name)
+
+    # pyarrow's own table, in batches of 64 rows, with other column types, as input.
+    t = pa.table(
+        {
+            "theta_i_deg": pa.array(g[:, 0], pa.float64()),
+            "phi_i_deg": pa.array(g[:, 1].astype(np.float32)),
+            "theta_r_deg": pa.array(np.round(g[:, 2]).astype(np.int32)),
+            "phi_r_deg": pa.array(g[:, 3]),
+            "label": pa.array([f"r{k}" for k in range(200)]),
+        }
+    )
+    with ipc.new_file(tmp_path / "py.feather", t.schema) as w:
+        for b in t.to_batches(max_chunksize=64):
+            w.write_batch(b)
+    run(tmp_path / "py.feather", tmp_path / "py.arrow")
+    out = ipc.open_file(tmp_path / "py.arrow").read_all()
+    assert out.num_rows == 200
+    assert out.column("label").to_pylist() == [f"r{k}" for k in range(200)]
+    np.testing.assert_array_equal(
+        out.column("phi_i_deg").to_numpy(), g[:, 1].astype(np.float32).astype(np.float64)
+    )
+    f = polbrdf.mueller(
+        polbrdf.Material.preset("paint"),
+        g[:, 0],
+        g[:, 1].astype(np.float32).astype(np.float64),
+        np.round(g[:, 2]),
+        g[:, 3],
+    )
+    m = np.stack([out.column(f"m{k // 4}{k % 4}").to_numpy() for k in range(16)], axis=-1)
+    np.testing.assert_allclose(m.reshape(-1, 4, 4), f, rtol=1e-12, atol=1e-300)

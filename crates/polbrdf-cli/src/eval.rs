@@ -1,5 +1,5 @@
-//! `polbrdf eval`: the pBRDF at every geometry of a table (CSV or `.npy`), streamed in chunks
-//! so memory stays bounded for any number of rows.
+//! `polbrdf eval`: the pBRDF at every geometry of a table (CSV, `.npy` or Arrow IPC), streamed
+//! in chunks so memory stays bounded for any number of rows.
 
 use crate::error::CliError;
 use polbrdf::Engine;
@@ -10,7 +10,8 @@ use std::path::Path;
 
 /// Runs `polbrdf eval`. A material with a spectral index needs the input's `wavelength_um`
 /// column: every row is evaluated with the index at its wavelength. The formats follow the
-/// extensions (`.npy`, else CSV); the output is `-` (standard output) when absent. An error
+/// extensions (`.npy`; `.arrow`/`.feather`: Arrow IPC file; `.arrows`: Arrow IPC stream; else
+/// CSV); the output is `-` (standard output) when absent. An error
 /// mid-stream leaves a regular output file as it was.
 pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), CliError> {
     let spec = polbrdf_io::load_material(material)?;
@@ -34,6 +35,9 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
     let headers = reader.headers().to_vec();
     let out = Output::create(out_path)?;
     let mut writer = ResultWriter::new(out, input, &headers, reader.rows_hint())?;
+    if let Some(kinds) = reader.column_kinds() {
+        writer.column_kinds(kinds);
+    }
     while let Some(chunk) = reader.next_chunk(CHUNK_ROWS)? {
         let pbrdf = match &fixed {
             Some(m) => Engine::new(m).pbrdf_of(&chunk.geometries)?,

@@ -365,7 +365,69 @@ fn export(what: &'static str, extra: &[&'static str], code: i32, says: &[&'stati
     case(what, vec![], &args, code, says)
 }
 
+/// `eval` of the paint preset on an Arrow table `name` holding `bytes`.
+#[cfg(feature = "arrow")]
+fn eval_arrow(
+    what: &'static str,
+    name: &'static str,
+    bytes: Vec<u8>,
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let input: &'static str = Box::leak(format!("{{d}}/{name}").into_boxed_str());
+    case(
+        what,
+        vec![(name, bytes)],
+        &[
+            "eval",
+            "--material",
+            "paint",
+            "--input",
+            input,
+            "--output",
+            "{d}/out.csv",
+        ],
+        code,
+        says,
+    )
+}
+
+/// Arrow IPC inputs (feature `arrow`): malformed, truncated, nulls, unsupported types.
+#[cfg(feature = "arrow")]
+#[rustfmt::skip]
+fn arrow_cases() -> Vec<Case> {
+    use crate::arrow::{arrow_bytes, geometry_arrow};
+    use arrow_array::{ArrayRef, BooleanArray, Float64Array, StringArray};
+    use std::sync::Arc;
+    let good = geometry_arrow(vec![]);
+    let f = |v: Vec<Option<f64>>| -> ArrayRef { Arc::new(Float64Array::from(v)) };
+    let angles = |t: Option<f64>, p: Option<f64>| vec![("theta_i_deg", f(vec![Some(30.0), t])), ("phi_i_deg", f(vec![Some(0.0), p])), ("theta_r_deg", f(vec![Some(30.0), Some(30.0)])), ("phi_r_deg", f(vec![Some(180.0), Some(180.0)]))];
+    let stream = arrow_bytes(&angles(Some(30.0), Some(0.0)), true, 1);
+    vec![
+        eval_arrow("arrow: not Arrow", "g.arrow", t("theta_i_deg,phi_i_deg\n"), 3, &["g.arrow", "Arrow IPC"]),
+        eval_arrow("arrow: empty file", "g.arrow", vec![], 3, &["g.arrow", "Arrow IPC"]),
+        eval_arrow("arrow: footer cut off", "g.arrow", good[..good.len() - 10].to_vec(), 3, &["g.arrow", "Arrow IPC"]),
+        eval_arrow("arrow: cut in half", "g.arrow", good[..good.len() / 2].to_vec(), 3, &["g.arrow", "Arrow IPC"]),
+        eval_arrow("arrow: stream cut in its second batch", "g.arrows", stream[..stream.len() - 30].to_vec(), 3, &["g.arrows", "Arrow IPC batch 2"]),
+        eval_arrow("arrow: stream as a file", "g.arrow", stream.clone(), 3, &["g.arrow", "Arrow IPC"]),
+        eval_arrow("arrow: null", "g.arrow", arrow_bytes(&angles(Some(30.0), None), false, 8), 3, &["g.arrow:2:", "`phi_i_deg`", "null"]),
+        eval_arrow("arrow: zenith NaN", "g.arrow", arrow_bytes(&angles(Some(f64::NAN), Some(0.0)), false, 8), 3, &["g.arrow:2:", "theta_i_deg"]),
+        eval_arrow("arrow: boolean column", "g.arrow", geometry_arrow(vec![("flag", Arc::new(BooleanArray::from(vec![true, false])))]), 3, &["g.arrow", "`flag`", "Boolean", "floats, integers and text"]),
+        eval_arrow("arrow: missing column", "g.arrow", arrow_bytes(&angles(Some(30.0), Some(0.0))[1..], false, 8), 3, &["g.arrow", "theta_i_deg"]),
+        eval_arrow("arrow: text angle", "g.arrows", arrow_bytes(&[("theta_i_deg", Arc::new(StringArray::from(vec!["30"])) as ArrayRef), ("phi_i_deg", f(vec![Some(0.0)])), ("theta_r_deg", f(vec![Some(30.0)])), ("phi_r_deg", f(vec![Some(180.0)]))], true, 8), 3, &["g.arrows:1:", "`theta_i_deg`", "must hold numbers"]),
+        eval_arrow("arrow: input column named brdf", "g.feather", geometry_arrow(vec![("brdf", f(vec![Some(1.0), Some(2.0)]))]), 3, &["g.feather", "`brdf`", "rename"]),
+        eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
+    ]
+}
+
 fn table() -> Vec<Case> {
+    let mut cases = table_common();
+    #[cfg(feature = "arrow")]
+    cases.extend(arrow_cases());
+    cases
+}
+
+fn table_common() -> Vec<Case> {
     let long_field = "7".repeat(100_000) + "x";
     vec![
         // Material files.

@@ -1,6 +1,8 @@
 //! Integration tests of the `polbrdf` binary (one test binary, modules by topic).
 
 mod albedo;
+#[cfg(feature = "arrow")]
+mod arrow;
 mod bad_inputs;
 mod bench;
 mod common;

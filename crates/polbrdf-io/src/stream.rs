@@ -1,9 +1,10 @@
-//! Streaming geometry tables in and result tables out (`polbrdf eval`): CSV or `.npy`, chosen
+//! Streaming geometry tables in and result tables out (`polbrdf eval`): CSV, `.npy` or Arrow
+//! IPC (`.arrow`, `.feather`: file format; `.arrows`: stream format; feature `arrow`), chosen
 //! by the file's extension, read and written in chunks of rows so memory stays bounded for any
 //! number of rows.
 //!
 //! Input: [`GeometryReader`] gives [`GeometryChunk`]s of validated rows, each with its line
-//! (CSV: the physical line; `.npy`: the 1-based row) for messages. Output: [`ResultWriter`]
+//! (CSV: the physical line; `.npy`, Arrow: the 1-based row) for messages. Output: [`ResultWriter`]
 //! writes the input columns, then `brdf, dolp, aolp_deg, m00 … m33`
 //! ([`crate::csv_io::result_columns`]), into an [`Output`] (atomic for a regular file).
 //! A `.npy` output holds numbers only: a CSV input column that is not a number is an error
@@ -30,17 +31,70 @@ pub enum Format {
     Csv,
     /// NumPy `.npy` structured array ([`crate::npy`]).
     Npy,
+    /// Arrow IPC file format (Feather v2): `.arrow`, `.feather`.
+    ArrowFile,
+    /// Arrow IPC stream format: `.arrows`.
+    ArrowStream,
 }
 
 impl Format {
-    /// The format a path's extension names: `.npy` (any case) is [`Format::Npy`], anything
-    /// else (and `-`) CSV.
+    /// The format a path's extension names (any case): `.npy` is [`Format::Npy`], `.arrow`
+    /// and `.feather` [`Format::ArrowFile`], `.arrows` [`Format::ArrowStream`], anything else
+    /// (and `-`) CSV.
     pub fn of(path: &Path) -> Format {
         match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("npy") => Format::Npy,
+            Some(e) if e.eq_ignore_ascii_case("arrow") || e.eq_ignore_ascii_case("feather") => {
+                Format::ArrowFile
+            }
+            Some(e) if e.eq_ignore_ascii_case("arrows") => Format::ArrowStream,
             _ => Format::Csv,
         }
     }
+
+    /// True for the Arrow IPC formats.
+    pub fn is_arrow(self) -> bool {
+        matches!(self, Format::ArrowFile | Format::ArrowStream)
+    }
+}
+
+/// The error for an Arrow table in a build without the feature `arrow`.
+#[cfg(not(feature = "arrow"))]
+fn no_arrow(path: &Path) -> Error {
+    Error::File {
+        path: path.to_path_buf(),
+        message: "this build of polbrdf lacks Arrow support (built without the feature `arrow`); \
+                  use CSV or .npy, or rebuild with `--features arrow`"
+            .into(),
+    }
+}
+
+/// One input column of a chunk, column-major (Arrow input).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Column {
+    /// Numbers (any numeric Arrow type, as f64).
+    Numbers(Vec<f64>),
+    /// Text, passed through as written.
+    Text(Vec<String>),
+}
+
+impl Column {
+    /// The kind of the column.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Column::Numbers(_) => Kind::Number,
+            Column::Text(_) => Kind::Text,
+        }
+    }
+}
+
+/// The kind of a column: numbers or text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// Numbers (Float64 in an Arrow output).
+    Number,
+    /// Text (Utf8 in an Arrow output).
+    Text,
 }
 
 /// The CSV fields of a chunk's rows in one text buffer (no allocation per row).
@@ -100,12 +154,14 @@ pub enum Passthrough {
     Text(TextRows),
     /// Numbers, row-major (`.npy` input).
     Numbers(Vec<f64>),
+    /// Columns of numbers or text (Arrow input).
+    Columns(Vec<Column>),
 }
 
 /// A chunk of validated rows.
 #[derive(Debug, Clone)]
 pub struct GeometryChunk {
-    /// Each row's line (CSV) or 1-based row (`.npy`).
+    /// Each row's line (CSV) or 1-based row (`.npy`, Arrow).
     pub lines: Vec<usize>,
     /// Each row's geometry.
     pub geometries: Vec<Geometry>,
@@ -132,10 +188,12 @@ type Source = Box<dyn Read + Send>;
 enum Src {
     Csv(Box<CsvReader<BufReader<Source>>>),
     Npy(NpyReader<BufReader<Source>>),
+    #[cfg(feature = "arrow")]
+    Arrow(crate::arrow::ArrowReader),
 }
 
-/// A geometry table read in chunks (CSV or `.npy` by extension; `-` = CSV on standard
-/// input).
+/// A geometry table read in chunks (CSV, `.npy` or Arrow by extension; `-` = CSV on
+/// standard input).
 pub struct GeometryReader {
     path: PathBuf,
     headers: Vec<String>,
@@ -156,21 +214,38 @@ impl std::fmt::Debug for GeometryReader {
 }
 
 impl GeometryReader {
-    /// Opens `path` and reads its header (CSV header line, or `.npy` header).
+    /// Opens `path` and reads its header (CSV header line, `.npy` header, Arrow schema).
     ///
     /// # Errors
     /// [`Error::Read`]; [`Error::Syntax`] / [`Error::File`] for a malformed header, an empty
-    /// file, a repeated or missing column.
+    /// file, a repeated or missing column, an Arrow table in a build without Arrow support.
     pub fn open(path: &Path) -> Result<Self> {
-        let src: Source = if path.as_os_str() == "-" {
-            Box::new(std::io::stdin())
+        let format = Format::of(path);
+        #[cfg(not(feature = "arrow"))]
+        if format.is_arrow() {
+            return Err(no_arrow(path));
+        }
+        let file = if path.as_os_str() == "-" {
+            None
         } else {
-            Box::new(std::fs::File::open(path).map_err(|source| Error::Read {
+            Some(std::fs::File::open(path).map_err(|source| Error::Read {
                 path: path.to_path_buf(),
                 source,
             })?)
         };
-        Self::from_reader(src, path, Format::of(path))
+        #[cfg(feature = "arrow")]
+        if let (Format::ArrowFile, Some(f)) = (format, &file) {
+            // A regular file is read through its footer; anything else front to back.
+            if f.metadata().is_ok_and(|m| m.is_file()) {
+                let r = crate::arrow::ArrowReader::file(file.expect("a file"), path)?;
+                return Self::with_src(path, r.columns().to_vec(), Src::Arrow(r));
+            }
+        }
+        let src: Source = match file {
+            Some(f) => Box::new(f),
+            None => Box::new(std::io::stdin()),
+        };
+        Self::from_reader(src, path, format)
     }
 
     /// Reads a table of `format` from `src`; `path` is used in messages.
@@ -187,7 +262,23 @@ impl GeometryReader {
                 let r = CsvReader::new(BufReader::with_capacity(1 << 16, src), path)?;
                 (r.headers().to_vec(), Src::Csv(Box::new(r)))
             }
+            #[cfg(feature = "arrow")]
+            Format::ArrowFile | Format::ArrowStream => {
+                let r = if format == Format::ArrowFile {
+                    crate::arrow::ArrowReader::file_sequential(src, path)?
+                } else {
+                    crate::arrow::ArrowReader::stream(src, path)?
+                };
+                (r.columns().to_vec(), Src::Arrow(r))
+            }
+            #[cfg(not(feature = "arrow"))]
+            Format::ArrowFile | Format::ArrowStream => return Err(no_arrow(path)),
         };
+        Self::with_src(path, headers, src)
+    }
+
+    /// The reader of a source whose header has been read: checks the columns.
+    fn with_src(path: &Path, headers: Vec<String>, src: Src) -> Result<Self> {
         let angles = crate::csv_io::check_header(&headers, path, &ANGLE_COLUMNS)?;
         let wavelength = headers.iter().position(|h| h == WAVELENGTH_COLUMN);
         Ok(Self {
@@ -211,6 +302,19 @@ impl GeometryReader {
         match self.src {
             Src::Csv(_) => Format::Csv,
             Src::Npy(_) => Format::Npy,
+            #[cfg(feature = "arrow")]
+            Src::Arrow(_) => Format::of(&self.path),
+        }
+    }
+
+    /// The kinds of the columns, when the format says them before the first row (`.npy`:
+    /// numbers; Arrow: its schema).
+    pub fn column_kinds(&self) -> Option<Vec<Kind>> {
+        match &self.src {
+            Src::Npy(_) => Some(vec![Kind::Number; self.headers.len()]),
+            Src::Csv(_) => None,
+            #[cfg(feature = "arrow")]
+            Src::Arrow(r) => Some(r.kinds().to_vec()),
         }
     }
 
@@ -219,6 +323,8 @@ impl GeometryReader {
         match &self.src {
             Src::Npy(r) => Some(r.header().rows),
             Src::Csv(_) => None,
+            #[cfg(feature = "arrow")]
+            Src::Arrow(r) => r.rows_hint(),
         }
     }
 
@@ -311,6 +417,56 @@ impl GeometryReader {
                     columns: Passthrough::Numbers(std::mem::take(&mut self.buf)),
                 }
             }
+            #[cfg(feature = "arrow")]
+            Src::Arrow(r) => {
+                let first = r.rows_read() as usize + 1;
+                let Some(cols) = r.next_rows(max)? else {
+                    self.done = true;
+                    return Ok(None);
+                };
+                let n = match cols.first() {
+                    Some(Column::Numbers(v)) => v.len(),
+                    Some(Column::Text(v)) => v.len(),
+                    None => 0,
+                };
+                let lines: Vec<usize> = (first..first + n).collect();
+                // The angle and wavelength columns must be numbers.
+                let number = |i: usize| -> Result<&[f64]> {
+                    match &cols[i] {
+                        Column::Numbers(v) => Ok(v),
+                        Column::Text(v) => Err(Error::Field {
+                            path: path.clone(),
+                            line: first,
+                            field: self.headers[i].clone(),
+                            message: format!(
+                                "a text column (`{}`); this column must hold numbers",
+                                v.first().map(String::as_str).unwrap_or("")
+                            ),
+                        }),
+                    }
+                };
+                let (ta, pa, tr, pr) = (number(a)?, number(b)?, number(c)?, number(d)?);
+                let mut geometries = Vec::with_capacity(n);
+                for (k, &line) in lines.iter().enumerate() {
+                    geometries.push(numeric_geometry(&path, line, [ta[k], pa[k], tr[k], pr[k]])?);
+                }
+                let wavelengths = match self.wavelength {
+                    Some(w) => Some(
+                        number(w)?
+                            .iter()
+                            .zip(&lines)
+                            .map(|(&v, &line)| checked_wavelength(&path, line, v))
+                            .collect::<Result<Vec<f64>>>()?,
+                    ),
+                    None => None,
+                };
+                GeometryChunk {
+                    lines,
+                    geometries,
+                    wavelengths,
+                    columns: Passthrough::Columns(cols),
+                }
+            }
         };
         if chunk.is_empty() {
             self.done = true;
@@ -354,6 +510,26 @@ enum Sink {
         w: NpyWriter<BufWriterFile>,
         out: Output,
     },
+    /// Arrow IPC, its schema fixed by the first chunk (or by [`ResultWriter::column_kinds`]).
+    #[cfg(feature = "arrow")]
+    Arrow(ArrowSink),
+}
+
+/// An Arrow output: waiting for its schema, then open.
+#[cfg(feature = "arrow")]
+enum ArrowSink {
+    Pending {
+        out: Output,
+        stream: bool,
+        kinds: Option<Vec<Kind>>,
+    },
+    Open {
+        w: Box<crate::arrow::ArrowWriter<Output>>,
+        kinds: Vec<Kind>,
+        shown: PathBuf,
+    },
+    /// Only while switching from `Pending` to `Open`.
+    Gone,
 }
 
 type BufWriterFile = std::io::BufWriter<std::fs::File>;
@@ -408,6 +584,14 @@ impl ResultWriter {
             }
         };
         let sink = match Format::of(out.path()) {
+            #[cfg(feature = "arrow")]
+            f @ (Format::ArrowFile | Format::ArrowStream) => Sink::Arrow(ArrowSink::Pending {
+                out,
+                stream: f == Format::ArrowStream,
+                kinds: None,
+            }),
+            #[cfg(not(feature = "arrow"))]
+            Format::ArrowFile | Format::ArrowStream => return Err(no_arrow(out.path())),
             Format::Csv => {
                 let mut line = Vec::new();
                 {
@@ -460,11 +644,29 @@ impl ResultWriter {
         })
     }
 
+    /// Declares the kinds of the input columns before the first chunk, when the input's
+    /// schema says them (Arrow input): an Arrow output then has that schema even without rows.
+    /// Other outputs ignore it.
+    pub fn column_kinds(&mut self, kinds: Vec<Kind>) {
+        #[cfg(feature = "arrow")]
+        if let Sink::Arrow(ArrowSink::Pending { kinds: k, .. }) = &mut self.sink {
+            *k = Some(kinds);
+        }
+        #[cfg(not(feature = "arrow"))]
+        let _ = kinds;
+    }
+
     /// The output's name.
     fn shown(&self) -> PathBuf {
         match &self.sink {
             Sink::Csv { out, .. } | Sink::NpySpool { out, .. } => out.path().to_path_buf(),
             Sink::Npy(w) => w.get_ref().path().to_path_buf(),
+            #[cfg(feature = "arrow")]
+            Sink::Arrow(ArrowSink::Pending { out, .. }) => out.path().to_path_buf(),
+            #[cfg(feature = "arrow")]
+            Sink::Arrow(ArrowSink::Open { shown, .. }) => shown.clone(),
+            #[cfg(feature = "arrow")]
+            Sink::Arrow(ArrowSink::Gone) => PathBuf::new(),
         }
     }
 
@@ -509,6 +711,21 @@ impl ResultWriter {
                 fill_npy_rows(&mut self.row, chunk, pbrdf, &self.headers, &self.input)?;
                 w.write_rows(&self.row).map_err(werr)
             }
+            #[cfg(feature = "arrow")]
+            Sink::Arrow(sink) => {
+                if let ArrowSink::Pending { kinds, .. } = sink {
+                    let kinds = kinds
+                        .take()
+                        .unwrap_or_else(|| chunk_kinds(&chunk.columns, cols, &self.input, chunk));
+                    sink.open(kinds, &self.headers)?;
+                }
+                let ArrowSink::Open { w, kinds, shown } = sink else {
+                    unreachable!("opened above")
+                };
+                let columns = arrow_columns(chunk, pbrdf, kinds, &self.headers, &self.input)?;
+                w.write_batch(columns)
+                    .map_err(|e| crate::arrow::write_err(shown, e))
+            }
         }
     }
 
@@ -541,8 +758,143 @@ impl ResultWriter {
                 std::io::copy(&mut f, &mut out).map_err(|e| out.error(e))?;
                 out.commit()
             }
+            #[cfg(feature = "arrow")]
+            Sink::Arrow(mut sink) => {
+                if let ArrowSink::Pending { kinds, .. } = &mut sink {
+                    let kinds = kinds
+                        .take()
+                        .unwrap_or_else(|| vec![Kind::Number; self.headers.len()]);
+                    sink.open(kinds, &self.headers)?;
+                }
+                let ArrowSink::Open { w, shown, .. } = sink else {
+                    unreachable!("opened above")
+                };
+                w.finish()
+                    .map_err(|e| crate::arrow::write_err(&shown, e))?
+                    .commit()
+            }
         }
     }
+}
+
+#[cfg(feature = "arrow")]
+impl ArrowSink {
+    /// Writes the schema: the input columns of `kinds`, then the result columns (Float64).
+    ///
+    /// # Errors
+    /// [`Error::Write`] / [`Error::File`] naming the output.
+    fn open(&mut self, kinds: Vec<Kind>, headers: &[String]) -> Result<()> {
+        let ArrowSink::Pending { out, stream, .. } = std::mem::replace(self, ArrowSink::Gone)
+        else {
+            unreachable!("open once")
+        };
+        let shown = out.path().to_path_buf();
+        let schema: Vec<(String, Kind)> = headers
+            .iter()
+            .cloned()
+            .zip(kinds.iter().copied())
+            .chain(result_columns().into_iter().map(|c| (c, Kind::Number)))
+            .collect();
+        let w = crate::arrow::ArrowWriter::new(out, &schema, stream)
+            .map_err(|e| crate::arrow::write_err(&shown, e))?;
+        *self = ArrowSink::Open {
+            w: Box::new(w),
+            kinds,
+            shown,
+        };
+        Ok(())
+    }
+}
+
+/// The kinds of a chunk's input columns for an Arrow output: `.npy` and Arrow input say them;
+/// a CSV column is numbers when every field of the first chunk is a number, else text.
+#[cfg(feature = "arrow")]
+fn chunk_kinds(
+    columns: &Passthrough,
+    cols: usize,
+    input: &Path,
+    chunk: &GeometryChunk,
+) -> Vec<Kind> {
+    match columns {
+        Passthrough::Numbers(_) => vec![Kind::Number; cols],
+        Passthrough::Columns(c) => c.iter().map(Column::kind).collect(),
+        Passthrough::Text(recs) => (0..cols)
+            .map(|i| {
+                let numbers = (0..recs.len())
+                    .all(|k| parse_number(input, chunk.lines[k], "", recs.field(k, i)).is_ok());
+                if numbers {
+                    Kind::Number
+                } else {
+                    Kind::Text
+                }
+            })
+            .collect(),
+    }
+}
+
+/// A chunk's columns for an Arrow output: the input columns as `kinds` says, then the 19
+/// result columns.
+///
+/// # Errors
+/// [`Error::Field`] naming the input's line and column when a CSV column that was numbers in
+/// the first chunk holds something else.
+#[cfg(feature = "arrow")]
+fn arrow_columns(
+    chunk: &GeometryChunk,
+    pbrdf: &[Mueller],
+    kinds: &[Kind],
+    headers: &[String],
+    input: &Path,
+) -> Result<Vec<Column>> {
+    let n = pbrdf.len();
+    let cols = headers.len();
+    let mut out = Vec::with_capacity(cols + 19);
+    for (i, (kind, name)) in kinds.iter().zip(headers).enumerate() {
+        let c = match (&chunk.columns, kind) {
+            (Passthrough::Numbers(v), _) => {
+                Column::Numbers((0..n).map(|k| v[k * cols + i]).collect())
+            }
+            (Passthrough::Columns(c), _) => c[i].clone(),
+            (Passthrough::Text(recs), Kind::Text) => {
+                Column::Text((0..n).map(|k| recs.field(k, i).to_string()).collect())
+            }
+            (Passthrough::Text(recs), Kind::Number) => Column::Numbers(
+                (0..n)
+                    .map(|k| {
+                        parse_number(input, chunk.lines[k], name, recs.field(k, i)).map_err(|e| {
+                            match e {
+                                Error::Field {
+                                    path,
+                                    line,
+                                    field,
+                                    message,
+                                } => Error::Field {
+                                    path,
+                                    line,
+                                    field,
+                                    message: format!(
+                                        "{message} (the column held numbers in the first \
+                                         {CHUNK_ROWS} rows, so the Arrow output's column is \
+                                         Float64)"
+                                    ),
+                                },
+                                other => other,
+                            }
+                        })
+                    })
+                    .collect::<Result<Vec<f64>>>()?,
+            ),
+        };
+        out.push(c);
+    }
+    let mut results: Vec<Vec<f64>> = (0..19).map(|_| Vec::with_capacity(n)).collect();
+    for f in pbrdf {
+        for (col, v) in results.iter_mut().zip(result_values(f)) {
+            col.push(v);
+        }
+    }
+    out.extend(results.into_iter().map(Column::Numbers));
+    Ok(out)
 }
 
 /// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
@@ -557,6 +909,15 @@ fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: 
         Passthrough::Numbers(v) => {
             for x in &v[k * cols..(k + 1) * cols] {
                 fmt_f64_into(*x, line);
+                line.push(b',');
+            }
+        }
+        Passthrough::Columns(c) => {
+            for col in c {
+                match col {
+                    Column::Numbers(v) => fmt_f64_into(v[k], line),
+                    Column::Text(v) => push_csv_field(line, &v[k]),
+                }
                 line.push(b',');
             }
         }
@@ -625,6 +986,21 @@ fn fill_npy_rows(
                 }
             }
             Passthrough::Numbers(v) => row.extend_from_slice(&v[k * cols..(k + 1) * cols]),
+            Passthrough::Columns(c) => {
+                for (col, name) in c.iter().zip(headers) {
+                    match col {
+                        Column::Numbers(v) => row.push(v[k]),
+                        Column::Text(_) => {
+                            return Err(Error::Field {
+                                path: input.to_path_buf(),
+                                line: chunk.lines[k],
+                                field: name.clone(),
+                                message: "a text column (a .npy output holds numbers only)".into(),
+                            })
+                        }
+                    }
+                }
+            }
         }
         row.extend_from_slice(&result_values(f));
     }

@@ -1,5 +1,7 @@
 //! Tests of the file formats (one test binary).
 
+#[cfg(feature = "arrow")]
+mod arrow_files;
 mod csv_files;
 mod csv_limits;
 mod file_sets;
