@@ -861,26 +861,16 @@ fn arrow_columns(
             (Passthrough::Text(recs), Kind::Number) => Column::Numbers(
                 (0..n)
                     .map(|k| {
-                        parse_number(input, chunk.lines[k], name, recs.field(k, i)).map_err(|e| {
-                            match e {
-                                Error::Field {
-                                    path,
-                                    line,
-                                    field,
-                                    message,
-                                } => Error::Field {
-                                    path,
-                                    line,
-                                    field,
-                                    message: format!(
-                                        "{message} (the column held numbers in the first \
-                                         {CHUNK_ROWS} rows, so the Arrow output's column is \
-                                         Float64)"
-                                    ),
-                                },
-                                other => other,
-                            }
-                        })
+                        output_number(
+                            input,
+                            chunk.lines[k],
+                            name,
+                            recs.field(k, i),
+                            &format!(
+                                "the column held numbers in the first {CHUNK_ROWS} rows, so \
+                                 the Arrow output's column is Float64"
+                            ),
+                        )
                     })
                     .collect::<Result<Vec<f64>>>()?,
             ),
@@ -895,6 +885,25 @@ fn arrow_columns(
     }
     out.extend(results.into_iter().map(Column::Numbers));
     Ok(out)
+}
+
+/// A passed-through CSV field parsed as a number for a numeric output; an error says `why` the
+/// output needs a number.
+fn output_number(input: &Path, line: usize, name: &str, text: &str, why: &str) -> Result<f64> {
+    parse_number(input, line, name, text).map_err(|e| match e {
+        Error::Field {
+            path,
+            line,
+            field,
+            message,
+        } => Error::Field {
+            path,
+            line,
+            field,
+            message: format!("{message} ({why})"),
+        },
+        other => other,
+    })
 }
 
 /// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
@@ -967,21 +976,13 @@ fn fill_npy_rows(
         match &chunk.columns {
             Passthrough::Text(recs) => {
                 for (field, name) in recs.row(k).zip(headers) {
-                    let v =
-                        parse_number(input, chunk.lines[k], name, field).map_err(|e| match e {
-                            Error::Field {
-                                path,
-                                line,
-                                field,
-                                message,
-                            } => Error::Field {
-                                path,
-                                line,
-                                field,
-                                message: format!("{message} (a .npy output holds numbers only)"),
-                            },
-                            other => other,
-                        })?;
+                    let v = output_number(
+                        input,
+                        chunk.lines[k],
+                        name,
+                        field,
+                        "a .npy output holds numbers only",
+                    )?;
                     row.push(v);
                 }
             }
