@@ -416,6 +416,8 @@ fn arrow_cases() -> Vec<Case> {
         eval_arrow("arrow: missing column", "g.arrow", arrow_bytes(&angles(Some(30.0), Some(0.0))[1..], false, 8), 3, &["g.arrow", "theta_i_deg"]),
         eval_arrow("arrow: text angle", "g.arrows", arrow_bytes(&[("theta_i_deg", Arc::new(StringArray::from(vec!["30"])) as ArrayRef), ("phi_i_deg", f(vec![Some(0.0)])), ("theta_r_deg", f(vec![Some(30.0)])), ("phi_r_deg", f(vec![Some(180.0)]))], true, 8), 3, &["g.arrows:1:", "`theta_i_deg`", "must hold numbers"]),
         eval_arrow("arrow: input column named brdf", "g.feather", geometry_arrow(vec![("brdf", f(vec![Some(1.0), Some(2.0)]))]), 3, &["g.feather", "`brdf`", "rename"]),
+        // Found by the arrow fuzz target: a footer block announcing 2⁵⁹ bytes (checked against the file's size before Arrow allocates it).
+        eval_arrow("arrow: a block beyond the file", "g.arrow", include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(), 3, &["g.arrow", "block 1", "lies outside the file"]),
         eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
     ]
 }
@@ -629,6 +631,9 @@ fn table_common() -> Vec<Case> {
         case("radiance: output is the scene", vec![("s.toml", t(SCENE))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/s.toml"], 3, &["same file as the input"]),
         // lut configurations.
         lut_config("lut: TOML syntax", "theta_r_deg = [0, \n", 3, &["l.toml:5", "invalid array"]),
+        // Found by the lut_config fuzz target: the toml crate's message for a control character is empty.
+        lut_config("lut: control character", "\r\u{0}\u{0}x = 1\n", 3, &["l.toml:4", "invalid character '\\r'", "control characters"]),
+        lut_config("lut: control character in a comment", "# a \u{7} bell\n", 3, &["l.toml:4", "invalid character '\\u{7}'"]),
         lut_config("lut: unknown key", &format!("{LUT_AXES}colour = 3\n"), 3, &["l.toml:6", "`colour`", "unknown key"]),
         lut_config("lut: missing axis", "theta_r_deg = [0]\n", 3, &["l.toml", "missing key `dphi_deg`"]),
         lut_config("lut: axis not increasing", "theta_r_deg = [30, 0]\ndphi_deg = [180]\n", 3, &["l.toml:4", "`theta_r_deg`", "strictly increasing"]),

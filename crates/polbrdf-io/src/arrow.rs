@@ -81,6 +81,69 @@ fn guarded<T>(
     }
 }
 
+/// Checks an IPC file's footer before Arrow reads it: every block it lists (dictionaries,
+/// record batches) lies inside the file, so that no block makes the decoder allocate more than
+/// the file holds (a corrupted length would otherwise be allocated before the read fails).
+/// Leaves `src` at its start. A file too short for a footer, or without the trailing magic, is
+/// left to the decoder's own error.
+fn check_blocks<R: Read + Seek>(src: &mut R, path: &Path) -> Result<()> {
+    use std::io::SeekFrom;
+    let io = |source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let bad = |message: String| Error::File {
+        path: path.to_path_buf(),
+        message: format!("Arrow IPC file: {message}"),
+    };
+    let len = src.seek(SeekFrom::End(0)).map_err(io)?;
+    if len >= 18 {
+        let mut tail = [0u8; 10];
+        src.seek(SeekFrom::End(-10)).map_err(io)?;
+        src.read_exact(&mut tail).map_err(io)?;
+        if &tail[4..] == b"ARROW1" {
+            let footer_len = i64::from(i32::from_le_bytes([tail[0], tail[1], tail[2], tail[3]]));
+            if footer_len < 0 || footer_len as u64 + 10 > len {
+                return Err(bad(format!(
+                    "footer length {footer_len} does not fit in a file of {len} bytes"
+                )));
+            }
+            let end = len - 10 - footer_len as u64;
+            let mut footer = vec![0u8; footer_len as usize];
+            src.seek(SeekFrom::Start(end)).map_err(io)?;
+            src.read_exact(&mut footer).map_err(io)?;
+            let f = arrow_ipc::root_as_footer(&footer)
+                .map_err(|e| bad(format!("malformed footer ({e})")))?;
+            let blocks = f
+                .dictionaries()
+                .into_iter()
+                .chain(f.recordBatches())
+                .flatten();
+            for (i, b) in blocks.enumerate() {
+                let fits = b.offset() >= 0
+                    && b.metaDataLength() >= 0
+                    && b.bodyLength() >= 0
+                    && (b.offset() as u64)
+                        .checked_add(b.metaDataLength() as u64)
+                        .and_then(|x| x.checked_add(b.bodyLength() as u64))
+                        .is_some_and(|x| x <= end);
+                if !fits {
+                    return Err(bad(format!(
+                        "block {} (offset {}, {} + {} bytes) lies outside the file's {end} bytes \
+                         of data",
+                        i + 1,
+                        b.offset(),
+                        b.metaDataLength(),
+                        b.bodyLength()
+                    )));
+                }
+            }
+        }
+    }
+    src.seek(SeekFrom::Start(0)).map_err(io)?;
+    Ok(())
+}
+
 /// The kind of a column of Arrow type `t`, or `None` for a type `eval` cannot read.
 fn kind_of(t: &DataType) -> Option<Kind> {
     use DataType as D;
@@ -131,7 +194,8 @@ impl ArrowReader {
     /// # Errors
     /// [`Error::File`] naming `path` for a file that is not Arrow IPC, a malformed schema or a
     /// column of a type that cannot be read; [`Error::Read`].
-    pub fn file<R: Read + Seek + Send + 'static>(src: R, path: &Path) -> Result<Self> {
+    pub fn file<R: Read + Seek + Send + 'static>(mut src: R, path: &Path) -> Result<Self> {
+        check_blocks(&mut src, path)?;
         let r = guarded(path, "file", || {
             arrow_ipc::reader::FileReader::try_new_buffered(src, None)
         })?;

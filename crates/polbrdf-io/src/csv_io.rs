@@ -129,6 +129,22 @@ pub(crate) fn short_message(m: &str) -> String {
     cut(m, MAX_LIST_IN_MESSAGE)
 }
 
+/// The message of a TOML syntax error in `text`, bounded ([`short_message`]); the toml crate
+/// says nothing of a control character (in a comment, or anywhere outside a string), so then the
+/// message names the character.
+pub(crate) fn toml_message(e: &toml::de::Error, text: &str) -> String {
+    let m = e.message().trim();
+    if m.is_empty() {
+        let c = e.span().and_then(|s| text.get(s.start..)?.chars().next());
+        format!(
+            "invalid character {:?}: TOML allows no control characters, not even in comments",
+            c.unwrap_or('?')
+        )
+    } else {
+        short_message(m)
+    }
+}
+
 fn cut(s: &str, max: usize) -> String {
     if s.chars().count() > max {
         s.chars().take(max).collect::<String>() + "…"

@@ -324,7 +324,7 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
         toml::from_str(text).map_err(|e| Error::Syntax {
             path: path.to_path_buf(),
             line: e.span().map_or(1, |s| line_of(text, s.start)),
-            message: e.message().trim().to_string(),
+            message: crate::csv_io::toml_message(&e, text),
         })?;
     let mut doc = Doc {
         path,

@@ -34,7 +34,7 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
                  key is a plain name (`n = 1.5`)"
                     .into()
             } else {
-                crate::csv_io::short_message(e.message().trim())
+                crate::csv_io::toml_message(&e, text)
             },
         })?;
     let mut lines: BTreeMap<&str, usize> = BTreeMap::new();

@@ -56,10 +56,8 @@
 //! table is rows of `KEYS` and a function; a new sky model is a row of `SKY_MODELS`, its keys
 //! in `KEYS` and an arm of the match in `sky`.
 
-use crate::csv_io::{line_of, read_text};
-use crate::csv_io::{
-    read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_message, short_name, show,
-};
+use crate::csv_io::{line_of, read_text, toml_message};
+use crate::csv_io::{read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_name, show};
 use crate::error::{Error, Result};
 use crate::material::load_material;
 use polbrdf::analysis::scene::Sun;
@@ -428,18 +426,8 @@ impl<'a> Doc<'a> {
                 "dotted keys (`table.key = …`) are not supported in scene files: write the table \
                  out (`[table]`, then `key = …`)"
                     .into()
-            } else if e.message().trim().is_empty() {
-                // The toml crate says nothing of a control character in a comment.
-                let c = e
-                    .span()
-                    .and_then(|s| original.get(s.start..)?.chars().next());
-                format!(
-                    "invalid character {:?}: TOML allows no control characters, not even in \
-                     comments",
-                    c.unwrap_or('?')
-                )
             } else {
-                short_message(e.message().trim())
+                toml_message(&e, original)
             },
         }
     }
