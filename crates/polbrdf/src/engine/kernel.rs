@@ -906,13 +906,15 @@ impl MuellerOut for [f64; 16] {
         stream: bool,
     ) -> bool {
         match <&mut [Self; N]>::try_from(&mut *dst) {
-            Ok(whole) if !stream => transpose(rows, whole),
+            Ok(whole) if !stream => {
+                transpose(rows, whole);
+                false
+            }
             _ => {
                 transpose(rows, staged);
-                Self::write_block(dst, staged, stream);
+                Self::write_block(dst, staged, stream)
             }
         }
-        false
     }
 
     #[inline(always)]
@@ -954,11 +956,12 @@ impl MuellerOut for [f32; 16] {
     ) -> bool {
         match <&mut [Self; N]>::try_from(&mut *dst) {
             Ok(whole) if !stream => {
-                let mut narrow = [[0.0f32; N]; 16];
+                // Built in place (no zeroing per block).
+                let narrow: [[f32; N]; 16] =
+                    std::array::from_fn(|e| std::array::from_fn(|j| rows[e][j] as f32));
                 let mut overflow = false;
-                for (o, r) in narrow.iter_mut().zip(rows) {
-                    for (y, x) in o.iter_mut().zip(r) {
-                        *y = *x as f32;
+                for (o, r) in narrow.iter().zip(rows) {
+                    for (y, x) in o.iter().zip(r) {
                         overflow |= y.is_infinite() & x.is_finite();
                     }
                 }
