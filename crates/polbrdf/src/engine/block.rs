@@ -15,25 +15,36 @@ use crate::geometry::angles::{self, AngleVariables, FacetAngles, Trig};
 use crate::model::material::ModelParams;
 use crate::model::shadowing::{AzimuthTerm, Shadowing};
 use crate::model::terms::{self, Form};
-use crate::numeric::math::Math;
+use crate::numeric::math::{Math, Real};
 use crate::optics::fresnel;
 use crate::optics::mueller;
 use crate::optics::stokes;
 use std::f64::consts::FRAC_PI_2;
 
 /// One lane per element of a block.
-pub(crate) type Lanes<const N: usize> = [f64; N];
+pub(crate) type Lanes<const N: usize, T = f64> = [T; N];
 
-/// Beyond `b·θN²` of this (`D` below `e⁻⁶⁰⁰` of its peak), `D = a·exp(−bθN²)` is so sensitive to
-/// the last bit of θN (relative condition `2bθN²`) that a one-ulp difference of the arctangent
-/// shows at 1e-12: one-geometry path.
-const D_EXPONENT_MAX: f64 = 600.0;
-/// Below `|N² − sin²β|` of this, `q = sqrt(N² − sin²β)` is near its branch point (an index below
-/// 1 near its critical angle) and amplifies rounding: one-geometry path.
-const BRANCH_POINT_MIN: f64 = 1e-4;
-/// Results below this (but not zero) are near the subnormal range, where relative accuracy
-/// ends: one-geometry path.
-pub(crate) const TINY: f64 = 1e-280;
+/// Where the block kernel hands an element to the one-geometry path, per floating-point type:
+/// where the model is so ill-conditioned that the kernel's rounding would show at its accuracy
+/// (docs/model.md §12).
+pub(crate) trait Thresholds: Real {
+    /// Beyond `b·θN²` of this, `D = a·exp(−bθN²)` is so sensitive to the last bit of θN
+    /// (relative condition `2bθN²`) that it shows: in f64 (`D` below `e⁻⁶⁰⁰` of its peak) a
+    /// one-ulp difference of the arctangent would show at 1e-12.
+    const D_EXPONENT_MAX: Self;
+    /// Below `|N² − sin²β|` of this, `q = sqrt(N² − sin²β)` is near its branch point (an index
+    /// below 1 near its critical angle) and amplifies rounding.
+    const BRANCH_POINT_MIN: Self;
+    /// Results below this (but not zero) are near the subnormal range, where relative accuracy
+    /// ends.
+    const TINY: Self;
+}
+
+impl Thresholds for f64 {
+    const D_EXPONENT_MAX: f64 = 600.0;
+    const BRANCH_POINT_MIN: f64 = 1e-4;
+    const TINY: f64 = 1e-280;
+}
 
 /// The angles (rad) of one block.
 pub(crate) struct BlockIn<const N: usize> {
@@ -56,24 +67,26 @@ impl<const N: usize> BlockIn<N> {
 
 /// `N²` per element of a block, and whether the element's index is outside the kernel's
 /// accurate domain.
-pub(crate) struct IndexLanes<const N: usize> {
-    pub n2r: Lanes<N>,
-    pub n2i: Lanes<N>,
+pub(crate) struct IndexLanes<const N: usize, T = f64> {
+    pub n2r: Lanes<N, T>,
+    pub n2i: Lanes<N, T>,
     pub index_ill: [bool; N],
 }
 
 /// Sines and cosines of a block ([`Trig`] in structure-of-arrays form).
-pub(crate) struct TrigLanes<const N: usize> {
-    v: [Lanes<N>; 8],
+pub(crate) struct TrigLanes<const N: usize, T = f64> {
+    v: [Lanes<N, T>; 8],
 }
 
-impl<const N: usize> TrigLanes<N> {
+impl<const N: usize, T: Real> TrigLanes<N, T> {
     pub(crate) fn zeroed() -> Self {
-        Self { v: [[0.0; N]; 8] }
+        Self {
+            v: [[T::ZERO; N]; 8],
+        }
     }
 
     #[inline(always)]
-    fn set(&mut self, j: usize, t: Trig) {
+    fn set(&mut self, j: usize, t: Trig<T>) {
         [
             self.v[0][j],
             self.v[1][j],
@@ -86,7 +99,7 @@ impl<const N: usize> TrigLanes<N> {
         ] = [t.si, t.ci, t.sr, t.cr, t.sh, t.ch, t.su, t.cu];
     }
     #[inline(always)]
-    fn get(&self, j: usize) -> Trig {
+    fn get(&self, j: usize) -> Trig<T> {
         let v = &self.v;
         Trig {
             si: v[0][j],
@@ -103,13 +116,13 @@ impl<const N: usize> TrigLanes<N> {
 
 /// [`FacetAngles`] of a block in structure-of-arrays form.
 #[derive(Clone)]
-pub(crate) struct FacetLanes<const N: usize> {
-    v: [Lanes<N>; 10],
+pub(crate) struct FacetLanes<const N: usize, T = f64> {
+    v: [Lanes<N, T>; 10],
 }
 
-impl<const N: usize> FacetLanes<N> {
+impl<const N: usize, T: Real> FacetLanes<N, T> {
     #[inline(always)]
-    fn set(&mut self, j: usize, a: FacetAngles) {
+    fn set(&mut self, j: usize, a: FacetAngles<T>) {
         let v = [
             a.theta_i,
             a.cos_i,
@@ -127,7 +140,7 @@ impl<const N: usize> FacetLanes<N> {
         }
     }
     #[inline(always)]
-    pub(crate) fn get(&self, j: usize) -> FacetAngles {
+    pub(crate) fn get(&self, j: usize) -> FacetAngles<T> {
         let v = &self.v;
         FacetAngles {
             theta_i: v[0][j],
@@ -150,27 +163,27 @@ impl<const N: usize> FacetLanes<N> {
 /// geometries can be prepared once in these ([`crate::engine::Prepared`]) and evaluated for
 /// many materials or wavelengths.
 #[derive(Clone)]
-pub(crate) struct Geom<const N: usize> {
+pub(crate) struct Geom<const N: usize, T = f64> {
     /// Both directions above the horizon.
     pub valid: [bool; N],
     /// Outside the backend's range: one-geometry path.
     pub out_of_range: [bool; N],
-    pub facet: FacetLanes<N>,
+    pub facet: FacetLanes<N, T>,
     /// `[c_i, s_i, c_r, s_r]` of [`angles::eta_pairs`].
-    pub pairs: [Lanes<N>; 4],
+    pub pairs: [Lanes<N, T>; 4],
     /// θi, φi, θr, φr (rad) as given.
     pub angles: [Lanes<N>; 4],
 }
 
-impl<const N: usize> Geom<N> {
+impl<const N: usize, T: Real> Geom<N, T> {
     pub(crate) fn zeroed() -> Self {
-        let z = [0.0; N];
+        let z = [T::ZERO; N];
         Self {
             valid: [false; N],
             out_of_range: [false; N],
             facet: FacetLanes { v: [z; 10] },
             pairs: [z; 4],
-            angles: [z; 4],
+            angles: [[0.0; N]; 4],
         }
     }
 }
@@ -178,13 +191,13 @@ impl<const N: usize> Geom<N> {
 /// What the geometry stages of a block work in: the angles, the sines and cosines, and the
 /// results. Made (zeroed) once per job and overwritten block by block, so that no block pays
 /// for initializing or moving its arrays.
-pub(crate) struct GeomScratch<const N: usize> {
+pub(crate) struct GeomScratch<const N: usize, T = f64> {
     pub input: BlockIn<N>,
-    pub trig: TrigLanes<N>,
-    pub geo: Geom<N>,
+    pub trig: TrigLanes<N, T>,
+    pub geo: Geom<N, T>,
 }
 
-impl<const N: usize> GeomScratch<N> {
+impl<const N: usize, T: Real> GeomScratch<N, T> {
     pub(crate) fn zeroed() -> Self {
         Self {
             input: BlockIn::zeroed(),
@@ -199,7 +212,7 @@ impl<const N: usize> GeomScratch<N> {
 /// is (only a prepared batch keeps the angles).
 #[inline(always)]
 pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
-    s: &mut GeomScratch<N>,
+    s: &mut GeomScratch<N, M::F>,
     phi_n: bool,
 ) {
     let (b, trig, g) = (&s.input, &mut s.trig, &mut s.geo);
@@ -207,7 +220,7 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
     for j in 0..N {
         trig.set(j, Trig::new::<M>(b.ti[j], b.pi[j], b.tr[j], b.pr[j]));
         g.valid[j] = b.ti[j] < FRAC_PI_2 && b.tr[j] < FRAC_PI_2;
-        g.out_of_range[j] = !Trig::in_range::<M>(b.pi[j], b.pr[j]);
+        g.out_of_range[j] = !Trig::<M::F>::in_range::<M>(b.pi[j], b.pr[j]);
     }
     // Stage 2: the angles (θN, β) and cosines; ΦN (eq3 only) in a loop of its own, so that
     // materials without it do not pay for its arctangent.
@@ -231,11 +244,14 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
 }
 
 /// The geometry part of a block of explicit angle variables (the angle-variable entry point).
-pub(crate) fn geometry_of_variables<const N: usize>(v: &[AngleVariables; N], g: &mut Geom<N>) {
+pub(crate) fn geometry_of_variables<const N: usize, T: Real>(
+    v: &[AngleVariables; N],
+    g: &mut Geom<N, T>,
+) {
     for j in 0..N {
         g.valid[j] = v[j].theta_i < FRAC_PI_2 && v[j].theta_r < FRAC_PI_2;
         g.facet.set(j, FacetAngles::from_variables(&v[j]));
-        let [ci, si, cr, sr] = v[j].eta_pairs();
+        let [ci, si, cr, sr] = v[j].eta_pairs().map(T::of);
         [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = [ci, si, cr, sr];
     }
 }
@@ -243,24 +259,24 @@ pub(crate) fn geometry_of_variables<const N: usize>(v: &[AngleVariables; N], g: 
 /// What both output paths share, per element of a block: the fallback mask, `q`, the scalar
 /// factor `g = f_s/R_F` and `f_v`, and `N²` (made once per job, overwritten block by block, as
 /// [`GeomScratch`]).
-pub(crate) struct Front<const N: usize> {
+pub(crate) struct Front<const N: usize, T = f64> {
     /// The element must take the one-geometry path.
     pub fallback: [bool; N],
-    pub qr: Lanes<N>,
-    pub qi: Lanes<N>,
-    pub g: Lanes<N>,
-    pub fv: Lanes<N>,
-    pub n2r: Lanes<N>,
-    pub n2i: Lanes<N>,
+    pub qr: Lanes<N, T>,
+    pub qi: Lanes<N, T>,
+    pub g: Lanes<N, T>,
+    pub fv: Lanes<N, T>,
+    pub n2r: Lanes<N, T>,
+    pub n2i: Lanes<N, T>,
     /// D and SO's numerator and denominator (between stages).
-    d: Lanes<N>,
-    so_num: Lanes<N>,
-    so_den: Lanes<N>,
+    d: Lanes<N, T>,
+    so_num: Lanes<N, T>,
+    so_den: Lanes<N, T>,
 }
 
-impl<const N: usize> Front<N> {
+impl<const N: usize, T: Real> Front<N, T> {
     pub(crate) fn zeroed() -> Self {
-        let z = [0.0; N];
+        let z = [T::ZERO; N];
         Self {
             fallback: [false; N],
             qr: z,
@@ -281,10 +297,13 @@ impl<const N: usize> Front<N> {
 #[inline(always)]
 pub(crate) fn front<M: Math, const N: usize>(
     p: &ModelParams,
-    geo: &Geom<N>,
-    b: &IndexLanes<N>,
-    f: &mut Front<N>,
-) {
+    geo: &Geom<N, M::F>,
+    b: &IndexLanes<N, M::F>,
+    f: &mut Front<N, M::F>,
+) where
+    M::F: Thresholds,
+{
+    let zero = M::F::ZERO;
     f.n2r = b.n2r;
     f.n2i = b.n2i;
     for j in 0..N {
@@ -292,11 +311,11 @@ pub(crate) fn front<M: Math, const N: usize>(
     }
     // Stage 3: q = sqrt(N² − sin²β) on the principal branch; a real N² (k = 0, the same in
     // every lane) needs one square root and no division.
-    if f.n2i.iter().all(|v| *v == 0.0) {
+    if f.n2i.iter().all(|v| *v == zero) {
         for j in 0..N {
             let s2b = geo.facet.get(j).sin2_beta;
             (f.qr[j], f.qi[j]) = fresnel::transmitted_q_real(f.n2r[j], s2b);
-            f.fallback[j] |= (f.n2r[j] - s2b).abs() < BRANCH_POINT_MIN;
+            f.fallback[j] |= (f.n2r[j] - s2b).abs() < M::F::BRANCH_POINT_MIN;
         }
     } else {
         for j in 0..N {
@@ -304,7 +323,7 @@ pub(crate) fn front<M: Math, const N: usize>(
             (f.qr[j], f.qi[j]) = fresnel::transmitted_q_complex::<M>(f.n2r[j], f.n2i[j], s2b);
             let zr = f.n2r[j] - s2b;
             let z2 = M::mla(zr, zr, f.n2i[j] * f.n2i[j]);
-            f.fallback[j] |= z2 < BRANCH_POINT_MIN * BRANCH_POINT_MIN;
+            f.fallback[j] |= z2 < M::F::BRANCH_POINT_MIN * M::F::BRANCH_POINT_MIN;
         }
     }
     // Stage 4: D (eq. 4), SO (eq. 3), g and f_v (eqs. 1, 6) — the same formulas as
@@ -318,11 +337,13 @@ pub(crate) fn front<M: Math, const N: usize>(
         d[j] = dist.eval_with::<M>(tn);
         // D so far down its tail that θN's last bit shows, or near the underflow limit.
         let y = dist.exponent(tn);
-        f.fallback[j] |= dist.a() > 0.0 && y > -750.0 && (d[j] < TINY || -y > D_EXPONENT_MAX);
+        f.fallback[j] |= dist.a() > 0.0
+            && y > M::F::of(-750.0)
+            && (d[j] < M::F::TINY || -y > M::F::D_EXPONENT_MAX);
     }
     let (so_num, so_den) = (&mut f.so_num, &mut f.so_den);
-    so_num.fill(1.0);
-    so_den.fill(1.0);
+    so_num.fill(M::F::ONE);
+    so_den.fill(M::F::ONE);
     if let Some(s) = p.shadowing {
         let mut ratio = |s: Shadowing| {
             for j in 0..N {
@@ -363,11 +384,14 @@ pub(crate) fn front<M: Math, const N: usize>(
 /// and the DoLP needs no rotation; the AoLP needs η_r.
 #[inline(always)]
 pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
-    f: &mut Front<N>,
-    geo: &Geom<N>,
-    out: &mut [Lanes<N>; 3],
-) {
-    let mut gb = [0.0; N];
+    f: &mut Front<N, M::F>,
+    geo: &Geom<N, M::F>,
+    out: &mut [Lanes<N, M::F>; 3],
+) where
+    M::F: Thresholds,
+{
+    let zero = M::F::ZERO;
+    let mut gb = [zero; N];
     for j in 0..N {
         let c = geo.facet.get(j).cos_beta;
         let [rs2, rp2, _, _] = fresnel::reflectances::<M>(f.n2r[j], f.n2i[j], c, f.qr[j], f.qi[j]);
@@ -376,9 +400,9 @@ pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
         let f00 = g * a + f.fv[j];
         gb[j] = g * b;
         let d = stokes::dolp(gb[j].abs(), f00);
-        f.fallback[j] |= geo.valid[j] && f00 > 0.0 && f00 < TINY;
-        out[0][j] = if geo.valid[j] { f00 } else { 0.0 };
-        out[1][j] = if geo.valid[j] { d } else { 0.0 };
+        f.fallback[j] |= geo.valid[j] && f00 > zero && f00 < M::F::TINY;
+        out[0][j] = if geo.valid[j] { f00 } else { zero };
+        out[1][j] = if geo.valid[j] { d } else { zero };
     }
     if AOLP {
         for j in 0..N {
@@ -390,7 +414,11 @@ pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
             ];
             let [_, _, cr2, sr2] = angles::rotations::<M>(p);
             let a = stokes::aolp::<M>(cr2 * gb[j], sr2 * gb[j]);
-            out[2][j] = if geo.valid[j] && gb[j] != 0.0 { a } else { 0.0 };
+            out[2][j] = if geo.valid[j] && gb[j] != zero {
+                a
+            } else {
+                zero
+            };
         }
     }
 }
@@ -400,10 +428,13 @@ pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
 /// `F = R(η_r)·(g·M_d)·R(−η_i) + f_v·diag(1, 0, 0, 0)`, in one loop.
 #[inline(always)]
 pub(crate) fn mueller<M: Math, const N: usize>(
-    f: &mut Front<N>,
-    geo: &Geom<N>,
-    out: &mut [Lanes<N>; 16],
-) {
+    f: &mut Front<N, M::F>,
+    geo: &Geom<N, M::F>,
+    out: &mut [Lanes<N, M::F>; 16],
+) where
+    M::F: Thresholds,
+{
+    let zero = M::F::ZERO;
     for j in 0..N {
         let c = geo.facet.get(j).cos_beta;
         let (n2r, n2i, qr, qi) = (f.n2r[j], f.n2i[j], f.qr[j], f.qi[j]);
@@ -420,9 +451,9 @@ pub(crate) fn mueller<M: Math, const N: usize>(
         let v =
             mueller::facet_pbrdf::<M>(coef.map(|x| g * x), f.fv[j], angles::rotations::<M>(pairs));
         let valid = geo.valid[j];
-        f.fallback[j] |= valid && v[0] > 0.0 && v[0] < TINY;
+        f.fallback[j] |= valid && v[0] > zero && v[0] < M::F::TINY;
         for (o, x) in out.iter_mut().zip(v) {
-            o[j] = if valid { x } else { 0.0 };
+            o[j] = if valid { x } else { zero };
         }
     }
 }

@@ -683,7 +683,7 @@ fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize, b: &mut Bl
 trait Blocks {
     /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`:
     /// computed in `scratch` (and returned from there) or taken from where it was prepared.
-    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
@@ -700,7 +700,7 @@ struct Computed<S>(S);
 
 impl<S: Source> Blocks for Computed<S> {
     #[inline(always)]
-    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
@@ -728,7 +728,7 @@ struct Variables<'v>(&'v [AngleVariables]);
 
 impl Blocks for Variables<'_> {
     #[inline(always)]
-    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
@@ -835,7 +835,7 @@ struct PreparedRange<'p> {
 
 impl Blocks for PreparedRange<'_> {
     #[inline(always)]
-    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         _len: usize,
@@ -1133,7 +1133,7 @@ impl MuellerOut for Mueller {
 
 /// A piece of work generic over the elementary-function backend.
 trait Job {
-    fn run<M: Math>(&mut self);
+    fn run<M: Math<F = f64>>(&mut self);
 }
 
 /// Runs `job` with the code of `level` (the CPU supports it: a kernel is only built at a
@@ -1161,7 +1161,7 @@ struct MuellerJob<'k, 'a, 's, 'o, G, O, const N: usize> {
 
 impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, O, N> {
     #[inline(always)]
-    fn run<M: Math>(&mut self) {
+    fn run<M: Math<F = f64>>(&mut self) {
         let k = self.kernel;
         let phi_n = k.params.uses_phi_n();
         // Made once per job, overwritten block by block.
@@ -1205,7 +1205,7 @@ struct BrdfDolpJob<'k, 'a, 's, 'o, G, const N: usize, const AOLP: bool> {
 
 impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_, '_, G, N, AOLP> {
     #[inline(always)]
-    fn run<M: Math>(&mut self) {
+    fn run<M: Math<F = f64>>(&mut self) {
         let k = self.kernel;
         let phi_n = k.params.uses_phi_n();
         let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
@@ -1247,7 +1247,7 @@ struct PrepareJob<'s, 'b> {
 
 impl Job for PrepareJob<'_, '_> {
     #[inline(always)]
-    fn run<M: Math>(&mut self) {
+    fn run<M: Math<F = f64>>(&mut self) {
         let n = self.src.cols[0].len();
         let mut scratch = GeomScratch::<BLOCK>::zeroed();
         for start in (0..n).step_by(BLOCK) {
@@ -1331,7 +1331,7 @@ struct ElementaryJob<'a> {
 
 impl Job for ElementaryJob<'_> {
     #[inline(always)]
-    fn run<M: Math>(&mut self) {
+    fn run<M: Math<F = f64>>(&mut self) {
         let (x, y) = (self.x, self.y);
         let out = &mut *self.out;
         match self.op {

@@ -10,35 +10,36 @@
 //! `|s_xy|² = 4(cos²v sin²u + sinθi sinθr cos²(Δ/2))` with `cos v = cos((θi + θr)/2) = cos(θr + u)`,
 //! `s_z = cosθi + cosθr`, `cosβ = |s|/2`, `sin²β = sin²u + sinθi sinθr sin²(Δ/2)`.
 
-use crate::numeric::math::{Math, Std};
+use crate::numeric::math::{Math, Real, Std};
 
-/// Sines and cosines of θi, θr, `Δ/2` (`Δ = φr − φi`) and `u = (θi − θr)/2`.
+/// Sines and cosines of θi, θr, `Δ/2` (`Δ = φr − φi`) and `u = (θi − θr)/2`, in `T` (f64, or
+/// f32 in the single-precision kernel).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Trig {
+pub struct Trig<T = f64> {
     /// sin θi, cos θi.
-    pub si: f64,
+    pub si: T,
     /// cos θi.
-    pub ci: f64,
+    pub ci: T,
     /// sin θr.
-    pub sr: f64,
+    pub sr: T,
     /// cos θr.
-    pub cr: f64,
+    pub cr: T,
     /// sin(Δ/2).
-    pub sh: f64,
+    pub sh: T,
     /// cos(Δ/2).
-    pub ch: f64,
+    pub ch: T,
     /// sin u.
-    pub su: f64,
+    pub su: T,
     /// cos u.
-    pub cu: f64,
+    pub cu: T,
 }
 
-impl Trig {
+impl<T: Real> Trig<T> {
     /// From the four angles (rad). `|Δ/2|` beyond the backend's accurate range
     /// ([`Math::SINCOS_MAX`]) is replaced by 0 — the batch engine sends such elements to the
-    /// one-geometry path ([`Trig::in_range`]).
+    /// one-geometry path ([`Trig::in_range`]). The half angles are formed in f64 whatever `T`.
     #[inline(always)]
-    pub fn new<M: Math>(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
+    pub fn new<M: Math<F = T>>(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
         let h = 0.5 * (phi_r - phi_i);
         let h = if h.abs() <= M::SINCOS_MAX { h } else { 0.0 };
         let (si, ci) = M::sincos(theta_i);
@@ -59,38 +60,39 @@ impl Trig {
 
     /// Whether backend `M` computes `sin(Δ/2)` of these azimuths to full accuracy.
     #[inline(always)]
-    pub fn in_range<M: Math>(phi_i: f64, phi_r: f64) -> bool {
+    pub fn in_range<M: Math<F = T>>(phi_i: f64, phi_r: f64) -> bool {
         (0.5 * (phi_r - phi_i)).abs() <= M::SINCOS_MAX
     }
 }
 
 /// The half vector `s = w_i + w_r` (unnormalized) in the frame of the plane of incidence.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HalfVector {
+pub struct HalfVector<T = f64> {
     /// `s∥ = sinθi + sinθr cosΔ = 2 cos v sin u + 2 sinθr cos²(Δ/2)` (along the plane of
     /// incidence).
-    pub along: f64,
+    pub along: T,
     /// `s⊥ = sinθr sinΔ` (across it).
-    pub across: f64,
+    pub across: T,
     /// `s_z = cosθi + cosθr`.
-    pub sz: f64,
+    pub sz: T,
     /// `|s_xy|`.
-    pub rho: f64,
+    pub rho: T,
     /// `|s|²`.
-    pub s2: f64,
+    pub s2: T,
 }
 
 /// The half vector of a geometry (module documentation).
 #[inline(always)]
-pub fn half_vector<M: Math>(t: &Trig) -> HalfVector {
+pub fn half_vector<M: Math>(t: &Trig<M::F>) -> HalfVector<M::F> {
+    let two = M::F::of(2.0);
     let cosv = M::mla(t.cr, t.cu, -(t.sr * t.su));
     let dif = cosv * t.su;
     let ch2 = t.ch * t.ch;
     let sz = t.ci + t.cr;
-    let rho2 = 4.0 * M::mla(dif, dif, t.si * t.sr * ch2);
+    let rho2 = M::F::of(4.0) * M::mla(dif, dif, t.si * t.sr * ch2);
     HalfVector {
-        along: 2.0 * M::mla(t.sr, ch2, dif),
-        across: 2.0 * t.sr * (t.sh * t.ch),
+        along: two * M::mla(t.sr, ch2, dif),
+        across: two * t.sr * (t.sh * t.ch),
         sz,
         rho: rho2.sqrt(),
         s2: M::mla(sz, sz, rho2),
@@ -99,35 +101,36 @@ pub fn half_vector<M: Math>(t: &Trig) -> HalfVector {
 
 /// `sin²β = sin²u + sinθi sinθr sin²(Δ/2)` (β the local incidence angle on the facet).
 #[inline(always)]
-pub fn sin2_beta<M: Math>(t: &Trig) -> f64 {
+pub fn sin2_beta<M: Math>(t: &Trig<M::F>) -> M::F {
     M::mla(t.su, t.su, t.si * t.sr * (t.sh * t.sh))
 }
 
 /// `θN = acos(h·z) = atan2(|s_xy|, s_z)` (eqs. 1–4).
 #[inline(always)]
-pub fn theta_n<M: Math>(h: &HalfVector) -> f64 {
+pub fn theta_n<M: Math>(h: &HalfVector<M::F>) -> M::F {
     M::atan2_pos(h.rho, h.sz)
 }
 
 /// `cosβ = |s|/2` and `β = atan2(sinβ, cosβ)` (eqs. 1, 3, 11).
 #[inline(always)]
-pub fn beta<M: Math>(h: &HalfVector, sin2_beta: f64) -> (f64, f64) {
-    let cos_beta = 0.5 * h.s2.sqrt();
+pub fn beta<M: Math>(h: &HalfVector<M::F>, sin2_beta: M::F) -> (M::F, M::F) {
+    let cos_beta = M::F::of(0.5) * h.s2.sqrt();
     (M::atan2_pos(sin2_beta.sqrt(), cos_beta), cos_beta)
 }
 
 /// `ΦN` (eq. 3): the angle between the plane (z, h) and the plane of incidence,
 /// `atan2(|s⊥|, |s∥|)` folded into [0, π/2] — and 0 when `|s_xy|` is at rounding level,
 /// `|s_xy| ≤ 8ε·(sinθi + sinθr)·max(1, |φi|, |φr|)` (docs/model.md §9.3): an azimuth carries a
-/// rounding error of order ulp(|φ|), which tilts a specular half vector by as much.
+/// rounding error of order ulp(|φ|), which tilts a specular half vector by as much (ε of f64:
+/// the azimuths are given in f64 and their half difference is formed in f64 on every path).
 #[inline(always)]
-pub fn phi_n<M: Math>(h: &HalfVector, t: &Trig, phi_scale: f64) -> f64 {
-    let level = 8.0 * f64::EPSILON * (t.si + t.sr) * phi_scale;
+pub fn phi_n<M: Math>(h: &HalfVector<M::F>, t: &Trig<M::F>, phi_scale: f64) -> M::F {
+    let level = M::F::of(8.0 * f64::EPSILON * phi_scale) * (t.si + t.sr);
     let d = M::atan2_pos(h.across.abs(), h.along.abs());
     if h.rho > level {
-        d.min(std::f64::consts::FRAC_PI_2)
+        d.min(M::F::of(std::f64::consts::FRAC_PI_2))
     } else {
-        0.0
+        M::F::ZERO
     }
 }
 
@@ -145,7 +148,7 @@ pub fn phi_scale(phi_i: f64, phi_r: f64) -> f64 {
 /// of approach) the facet frame is the incident one: `η_i = 0`, `(cos η_r, sin η_r) ∝
 /// (−cosΔ, cosθr sinΔ)`.
 #[inline(always)]
-pub fn eta_pairs<M: Math>(t: &Trig) -> [f64; 4] {
+pub fn eta_pairs<M: Math>(t: &Trig<M::F>) -> [M::F; 4] {
     let sc = t.su * t.cu;
     let shc = t.sh * t.ch;
     let sh2 = t.sh * t.sh;
@@ -153,66 +156,78 @@ pub fn eta_pairs<M: Math>(t: &Trig) -> [f64; 4] {
     let s_i = t.sr * shc;
     let c_r = M::mla(t.si * t.cr, sh2, -sc);
     let s_r = t.si * shc;
-    let regular = M::mla(c_i, c_i, s_i * s_i) > 1e-150;
+    let regular = M::mla(c_i, c_i, s_i * s_i) > M::F::PAIR_MIN;
+    let two = M::F::of(2.0);
     if regular {
         [c_i, s_i, c_r, s_r]
     } else {
-        [1.0, 0.0, M::mla(2.0, sh2, -1.0), 2.0 * t.cr * shc]
+        [
+            M::F::ONE,
+            M::F::ZERO,
+            M::mla(two, sh2, -M::F::ONE),
+            two * t.cr * shc,
+        ]
     }
 }
 
 /// `[cos2η_i, sin2η_i, cos2η_r, sin2η_r]` from the pairs of [`eta_pairs`]:
 /// `(cos2η, sin2η) = (c² − s², 2cs)/(c² + s²)` — the Mueller rotators need no angle.
 #[inline(always)]
-pub fn rotations<M: Math>([c_i, s_i, c_r, s_r]: [f64; 4]) -> [f64; 4] {
+pub fn rotations<M: Math>([c_i, s_i, c_r, s_r]: [M::F; 4]) -> [M::F; 4] {
     let ni = M::mla(c_i, c_i, s_i * s_i);
     let nr = M::mla(c_r, c_r, s_r * s_r);
-    let inv = 1.0 / (ni * nr);
+    let inv = M::F::ONE / (ni * nr);
     let (inv_i, inv_r) = (nr * inv, ni * inv);
+    let two = M::F::of(2.0);
     [
         M::mla(c_i, c_i, -(s_i * s_i)) * inv_i,
-        2.0 * c_i * s_i * inv_i,
+        two * c_i * s_i * inv_i,
         M::mla(c_r, c_r, -(s_r * s_r)) * inv_r,
-        2.0 * c_r * s_r * inv_r,
+        two * c_r * s_r * inv_r,
     ]
 }
 
 /// What the model's scalar terms and Fresnel amplitudes need of one geometry: the angles and the
 /// cosines, computed once per element.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FacetAngles {
+pub struct FacetAngles<T = f64> {
     /// θi (rad; in the azimuth factor of eq. 3).
-    pub theta_i: f64,
+    pub theta_i: T,
     /// cos θi.
-    pub cos_i: f64,
+    pub cos_i: T,
     /// cos θr.
-    pub cos_r: f64,
+    pub cos_r: T,
     /// θN (rad).
-    pub theta_n: f64,
+    pub theta_n: T,
     /// β (rad).
-    pub beta: f64,
+    pub beta: T,
     /// ΦN (rad), 0 unless asked for.
-    pub phi_n: f64,
+    pub phi_n: T,
     /// cos β.
-    pub cos_beta: f64,
+    pub cos_beta: T,
     /// sin²β.
-    pub sin2_beta: f64,
+    pub sin2_beta: T,
     /// `s_z = cosθi + cosθr`.
-    pub sz: f64,
+    pub sz: T,
     /// `|s|²`, so that `cos²θN = s_z²/|s|²`.
-    pub s2: f64,
+    pub s2: T,
 }
 
-impl FacetAngles {
+impl<T: Real> FacetAngles<T> {
     /// From a geometry's sines and cosines; ΦN only when `with_phi_n` (the eq. 3 azimuth factor
     /// is the only term that uses it).
     #[inline(always)]
-    pub fn from_trig<M: Math>(theta_i: f64, t: &Trig, phi_scale: f64, with_phi_n: bool) -> Self {
+    pub fn from_trig<M: Math<F = T>>(
+        theta_i: f64,
+        t: &Trig<T>,
+        phi_scale: f64,
+        with_phi_n: bool,
+    ) -> Self {
         let h = half_vector::<M>(t);
         let sin2_beta = sin2_beta::<M>(t);
         let (beta, cos_beta) = beta::<M>(&h, sin2_beta);
         Self {
-            theta_i,
+            theta_i: T::of(theta_i),
             cos_i: t.ci,
             cos_r: t.cr,
             theta_n: theta_n::<M>(&h),
@@ -220,7 +235,7 @@ impl FacetAngles {
             phi_n: if with_phi_n {
                 phi_n::<M>(&h, t, phi_scale)
             } else {
-                0.0
+                T::ZERO
             },
             cos_beta,
             sin2_beta,
@@ -230,23 +245,24 @@ impl FacetAngles {
     }
 
     /// From explicit angle variables (the angle-variable entry point): the cosines of the given
-    /// angles, and `|s|² = s_z²/cos²θN` (∞ at θN = π/2, where cos²θN = 0).
+    /// angles, and `|s|² = s_z²/cos²θN` (∞ at θN = π/2, where cos²θN = 0), computed in f64 and
+    /// rounded to `T`.
     pub fn from_variables(v: &AngleVariables) -> Self {
         let (ci, cr) = (v.theta_i.cos(), v.theta_r.cos());
         let (sb, cb) = v.beta.sin_cos();
         let sz = ci + cr;
         let cn = v.theta_n.cos();
         Self {
-            theta_i: v.theta_i,
-            cos_i: ci,
-            cos_r: cr,
-            theta_n: v.theta_n,
-            beta: v.beta,
-            phi_n: v.phi_n,
-            cos_beta: cb.max(0.0),
-            sin2_beta: sb * sb,
-            sz,
-            s2: sz * sz / (cn * cn),
+            theta_i: T::of(v.theta_i),
+            cos_i: T::of(ci),
+            cos_r: T::of(cr),
+            theta_n: T::of(v.theta_n),
+            beta: T::of(v.beta),
+            phi_n: T::of(v.phi_n),
+            cos_beta: T::of(cb.max(0.0)),
+            sin2_beta: T::of(sb * sb),
+            sz: T::of(sz),
+            s2: T::of(sz * sz / (cn * cn)),
         }
     }
 }

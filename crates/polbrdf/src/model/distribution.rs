@@ -1,7 +1,7 @@
 //! The facet distribution `D(θN) = a·exp(−b·θN²)` (eq. 4, docs/model.md §5).
 
 use crate::error::{at_most, non_negative, positive, Result, MAX_MAGNITUDE};
-use crate::numeric::math::{Math, Std};
+use crate::numeric::math::{Math, Real, Std};
 use crate::numeric::quadrature::integrate;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -70,14 +70,14 @@ impl Distribution {
 
     /// `D(θN) = a·exp(−bθN²)` with the exponential of backend `M` — the one formula of eq. 4.
     #[inline(always)]
-    pub fn eval_with<M: Math>(&self, theta_n: f64) -> f64 {
-        self.a * M::exp_neg(self.exponent(theta_n))
+    pub fn eval_with<M: Math>(&self, theta_n: M::F) -> M::F {
+        M::F::of(self.a) * M::exp_neg(self.exponent(theta_n))
     }
 
     /// The exponent `−b·θN²` of D.
     #[inline(always)]
-    pub fn exponent(&self, theta_n: f64) -> f64 {
-        -(self.b * theta_n * theta_n)
+    pub fn exponent<T: Real>(&self, theta_n: T) -> T {
+        -(T::of(self.b) * theta_n * theta_n)
     }
 
     /// `∫_hemisphere D(θN) cosθN dΩ` (1 for a normalized distribution).

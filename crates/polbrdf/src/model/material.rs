@@ -53,7 +53,7 @@ impl ModelParams {
 
     /// `(g, f_v)` and the factors D and SO (as numerator and denominator) at `a`: eqs. 4, 3, 1/6.
     #[inline(always)]
-    pub fn scalar_terms<M: Math>(&self, a: &FacetAngles) -> (f64, f64, f64, (f64, f64)) {
+    pub fn scalar_terms<M: Math<F = f64>>(&self, a: &FacetAngles) -> (f64, f64, f64, (f64, f64)) {
         let d = self.distribution.eval_with::<M>(a.theta_n);
         let so = self.shadowing.map_or((1.0, 1.0), |s| {
             s.ratio::<M>(a.theta_n, a.beta, a.phi_n, a.theta_i)

@@ -2,7 +2,7 @@
 
 use crate::error::{positive, Result};
 use crate::geometry::AngleVariables;
-use crate::numeric::math::{Math, Std};
+use crate::numeric::math::{Math, Real, Std};
 
 /// Whether SO includes the azimuth factor `1/(1 + ΦN·θi/Ω)` of eq. 3 as printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -101,13 +101,20 @@ impl Shadowing {
     /// `num = 1 + x·exp(−2β/τ)`, `den = (1 + x)·A_φ`, `x = θN/Ω`, `A_φ = 1 + ΦN·θi/Ω` (`eq3`)
     /// or 1.
     #[inline(always)]
-    pub fn ratio<M: Math>(&self, theta_n: f64, beta: f64, phi_n: f64, theta_i: f64) -> (f64, f64) {
-        let x = theta_n * self.inv_omega;
-        let e = M::exp_neg(-(beta * self.two_over_tau));
+    pub fn ratio<M: Math>(
+        &self,
+        theta_n: M::F,
+        beta: M::F,
+        phi_n: M::F,
+        theta_i: M::F,
+    ) -> (M::F, M::F) {
+        let (one, inv_omega) = (M::F::ONE, M::F::of(self.inv_omega));
+        let x = theta_n * inv_omega;
+        let e = M::exp_neg(-(beta * M::F::of(self.two_over_tau)));
         let a_phi = match self.azimuth {
-            AzimuthTerm::None => 1.0,
-            AzimuthTerm::Eq3 => M::mla(phi_n * theta_i, self.inv_omega, 1.0),
+            AzimuthTerm::None => one,
+            AzimuthTerm::Eq3 => M::mla(phi_n * theta_i, inv_omega, one),
         };
-        (M::mla(x, e, 1.0), (1.0 + x) * a_phi)
+        (M::mla(x, e, one), (one + x) * a_phi)
     }
 }

@@ -6,7 +6,7 @@
 //! by M00. This module computes `g` and `f_v`.
 
 use crate::geometry::angles::FacetAngles;
-use crate::numeric::math::Math;
+use crate::numeric::math::{Math, Real};
 
 /// Which surface term (docs/model.md §5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -43,8 +43,8 @@ impl std::str::FromStr for Form {
 /// The volume term (eq. 1), unpolarized: `f_v = ρ_D + 2ρ_V/(cosθi + cosθr)`, given
 /// `inv_sz = 1/(cosθi + cosθr)`.
 #[inline(always)]
-pub fn volume<M: Math>(rho_d: f64, rho_v: f64, inv_sz: f64) -> f64 {
-    M::mla(2.0 * rho_v, inv_sz, rho_d)
+pub fn volume<M: Math>(rho_d: f64, rho_v: f64, inv_sz: M::F) -> M::F {
+    M::mla(M::F::of(2.0 * rho_v), inv_sz, M::F::of(rho_d))
 }
 
 /// `(g, f_v)` of one element, with one division: `g = f_s/R_F(β)`, i.e.
@@ -54,30 +54,31 @@ pub fn volume<M: Math>(rho_d: f64, rho_v: f64, inv_sz: f64) -> f64 {
 #[inline(always)]
 pub fn surface_and_volume<M: Math>(
     form: Form,
-    d: f64,
-    (so_num, so_den): (f64, f64),
-    a: &FacetAngles,
+    d: M::F,
+    (so_num, so_den): (M::F, M::F),
+    a: &FacetAngles<M::F>,
     rho_d: f64,
     rho_v: f64,
-) -> (f64, f64) {
+) -> (M::F, M::F) {
     let (ci, cr, sz) = (a.cos_i, a.cos_r, a.sz);
-    let four_cc = 4.0 * ci * cr;
+    let four_cc = M::F::of(4.0) * ci * cr;
     let (num, den) = match form {
         Form::Standard => (d * so_num, so_den * four_cc),
         Form::Paper => (d * so_num * (sz * sz), so_den * (four_cc * ci * cr) * a.s2),
     };
     // 1/(den·s_z) gives both g = num/den and 1/s_z = den/(den·s_z).
-    let r = 1.0 / (den * sz);
+    let r = M::F::ONE / (den * sz);
     (num * sz * r, volume::<M>(rho_d, rho_v, den * r))
 }
 
-/// `g`, or 0 when the surface term `g·R_F` is below the smallest normal f64 (≈ 2.2·10⁻³⁰⁸ sr⁻¹):
-/// a subnormal keeps too few bits for its polarization to mean anything (docs/model.md §9.9).
+/// `g`, or 0 when the surface term `g·R_F` is below the smallest normal number (≈ 2.2·10⁻³⁰⁸
+/// sr⁻¹ in f64): a subnormal keeps too few bits for its polarization to mean anything
+/// (docs/model.md §9.9).
 #[inline(always)]
-pub fn flush_subnormal(g: f64, r_f: f64) -> f64 {
-    if g * r_f >= f64::MIN_POSITIVE {
+pub fn flush_subnormal<T: Real>(g: T, r_f: T) -> T {
+    if g * r_f >= T::MIN_POSITIVE {
         g
     } else {
-        0.0
+        T::ZERO
     }
 }

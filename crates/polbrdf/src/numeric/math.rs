@@ -19,20 +19,118 @@
 
 use std::f64::consts::{FRAC_2_PI, FRAC_PI_2, LOG2_E};
 
-/// The elementary operations of the model's formulas.
+/// The floating-point type the model's formulas compute in: f64 everywhere, f32 in the batch
+/// engine's single-precision kernel (docs/model.md §12, "Precision"). Literals and f64
+/// parameters enter a formula through [`Real::of`].
+pub trait Real:
+    Copy
+    + PartialEq
+    + PartialOrd
+    + std::fmt::Debug
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::Neg<Output = Self>
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// The machine epsilon (2⁻⁵² or 2⁻²³).
+    const EPSILON: Self;
+    /// The smallest positive normal number.
+    const MIN_POSITIVE: Self;
+    /// The smallest `c² + s²` of a Priest–Meier pair taken as regular
+    /// ([`crate::geometry::angles::eta_pairs`]): the product of two such (in
+    /// [`crate::geometry::angles::rotations`]) stays a normal number — 10⁻¹⁵⁰ in f64, 10⁻¹⁸
+    /// in f32.
+    const PAIR_MIN: Self;
+    /// `x` rounded to this type (exact for f64).
+    fn of(x: f64) -> Self;
+    /// Widened to f64 (exact).
+    fn to_f64(self) -> f64;
+    /// The square root (the hardware instruction).
+    fn sqrt(self) -> Self;
+    /// `|x|`.
+    fn abs(self) -> Self;
+    /// The smaller of the two (the other one where one is NaN).
+    fn min(self, other: Self) -> Self;
+    /// The larger of the two (the other one where one is NaN).
+    fn max(self, other: Self) -> Self;
+    /// `|self|` with the sign of `sign`.
+    fn copysign(self, sign: Self) -> Self;
+    /// Whether the sign bit is set (−0 included).
+    fn is_sign_negative(self) -> bool;
+}
+
+macro_rules! real {
+    ($t:ty, $pair_min:expr) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const EPSILON: Self = <$t>::EPSILON;
+            const MIN_POSITIVE: Self = <$t>::MIN_POSITIVE;
+            const PAIR_MIN: Self = $pair_min;
+            #[inline(always)]
+            fn of(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                <$t>::min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                <$t>::max(self, other)
+            }
+            #[inline(always)]
+            fn copysign(self, sign: Self) -> Self {
+                <$t>::copysign(self, sign)
+            }
+            #[inline(always)]
+            fn is_sign_negative(self) -> bool {
+                <$t>::is_sign_negative(self)
+            }
+        }
+    };
+}
+real!(f64, 1e-150);
+real!(f32, 1e-18);
+
+/// The elementary operations of the model's formulas, in the floating-point type `F`.
 pub trait Math {
+    /// The type the formulas compute in.
+    type F: Real;
     /// Largest `|x|` for which [`Math::sincos`] keeps full accuracy (∞ for [`Std`]).
     const SINCOS_MAX: f64;
     /// `a·b + c`: fused (one rounding) where the backend has the instruction, else two roundings.
-    fn mla(a: f64, b: f64, c: f64) -> f64;
-    /// `(sin x, cos x)`.
-    fn sincos(x: f64) -> (f64, f64);
+    fn mla(a: Self::F, b: Self::F, c: Self::F) -> Self::F;
+    /// `(sin x, cos x)` of an angle given in f64 (a single-precision backend reduces it by π/2
+    /// in f64 first, so that `cos θ` keeps its relative accuracy as θ → π/2).
+    fn sincos(x: f64) -> (Self::F, Self::F);
     /// `exp x` for `x ≤ 0` (0 below the underflow limit).
-    fn exp_neg(x: f64) -> f64;
+    fn exp_neg(x: Self::F) -> Self::F;
     /// `atan2(y, x)` for `y ≥ 0`, `x ≥ 0` (0 when both are 0).
-    fn atan2_pos(y: f64, x: f64) -> f64;
+    fn atan2_pos(y: Self::F, x: Self::F) -> Self::F;
     /// `atan2(y, x)` for any signs, with the standard library's results at signed zeros.
-    fn atan2(y: f64, x: f64) -> f64;
+    fn atan2(y: Self::F, x: Self::F) -> Self::F;
 }
 
 /// The standard library (libm): the backend of the one-geometry path.
@@ -40,6 +138,7 @@ pub trait Math {
 pub struct Std;
 
 impl Math for Std {
+    type F = f64;
     const SINCOS_MAX: f64 = f64::INFINITY;
     #[inline(always)]
     fn mla(a: f64, b: f64, c: f64) -> f64 {
@@ -102,6 +201,7 @@ impl Mla for FastUnfused {
 macro_rules! fast_math {
     ($t:ty) => {
         impl Math for $t {
+            type F = f64;
             const SINCOS_MAX: f64 = SINCOS_ARG_MAX;
             #[inline(always)]
             fn mla(a: f64, b: f64, c: f64) -> f64 {

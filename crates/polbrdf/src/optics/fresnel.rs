@@ -12,7 +12,7 @@
 //! [`Fresnel::new`] (complex numbers for a reader) and the batch engine both call them.
 
 use crate::error::{at_most, non_negative, positive, Result, MAX_INDEX};
-use crate::numeric::math::{Math, Std};
+use crate::numeric::math::{Math, Real, Std};
 use num_complex::Complex64;
 
 /// Complex refractive index `N = n + ik` of the reflecting medium, with `n > 0`, `k ≥ 0`
@@ -89,7 +89,12 @@ impl Fresnel {
     /// Amplitudes from `N²`, `cosβ` and `sin²β` with backend `M` (what the model computes from
     /// a geometry, where `cosβ = |w_i + w_r|/2` and `sin²β` come in closed form).
     #[inline(always)]
-    pub(crate) fn from_cos_sin2<M: Math>(n2r: f64, n2i: f64, c: f64, sin2_beta: f64) -> Self {
+    pub(crate) fn from_cos_sin2<M: Math<F = f64>>(
+        n2r: f64,
+        n2i: f64,
+        c: f64,
+        sin2_beta: f64,
+    ) -> Self {
         let (qr, qi) = transmitted_q::<M>(n2r, n2i, sin2_beta);
         let [_, _, inv_s, inv_p] = reflectances::<M>(n2r, n2i, c, qr, qi);
         let [rs_r, rs_i, rp_r, rp_i] = amplitudes::<M>(n2r, n2i, c, qr, qi, inv_s, inv_p);
@@ -125,8 +130,8 @@ pub fn index_squared(n: f64, k: f64) -> (f64, f64) {
 /// `(Re q, Im q)`: with `z = N² − sin²β`, `t = sqrt((|z| + |Re z|)/2)`, `q = t + i·Im z/(2t)`
 /// when `Re z ≥ 0`, else `Im z/(2t) + i·t`. For a real `N²` this is `sqrt(z)` or `i·sqrt(−z)`.
 #[inline(always)]
-pub fn transmitted_q<M: Math>(n2r: f64, n2i: f64, sin2_beta: f64) -> (f64, f64) {
-    if n2i == 0.0 {
+pub fn transmitted_q<M: Math>(n2r: M::F, n2i: M::F, sin2_beta: M::F) -> (M::F, M::F) {
+    if n2i == M::F::ZERO {
         transmitted_q_real(n2r, sin2_beta)
     } else {
         transmitted_q_complex::<M>(n2r, n2i, sin2_beta)
@@ -136,24 +141,24 @@ pub fn transmitted_q<M: Math>(n2r: f64, n2i: f64, sin2_beta: f64) -> (f64, f64) 
 /// [`transmitted_q`] for a real `N²` (`k = 0`): `sqrt(z)` or `i·sqrt(−z)`, one square root and
 /// no division — the values the complex formula gives for `Im z = 0` (tested).
 #[inline(always)]
-pub fn transmitted_q_real(n2r: f64, sin2_beta: f64) -> (f64, f64) {
+pub fn transmitted_q_real<T: Real>(n2r: T, sin2_beta: T) -> (T, T) {
     let zr = n2r - sin2_beta;
     let t = zr.abs().sqrt();
-    if zr >= 0.0 {
-        (t, 0.0)
+    if zr >= T::ZERO {
+        (t, T::ZERO)
     } else {
-        (0.0, t)
+        (T::ZERO, t)
     }
 }
 
 /// [`transmitted_q`] for any `N²` with `Im N² ≥ 0`.
 #[inline(always)]
-pub fn transmitted_q_complex<M: Math>(n2r: f64, n2i: f64, sin2_beta: f64) -> (f64, f64) {
+pub fn transmitted_q_complex<M: Math>(n2r: M::F, n2i: M::F, sin2_beta: M::F) -> (M::F, M::F) {
     let zr = n2r - sin2_beta;
-    let nonneg = zr >= 0.0;
+    let nonneg = zr >= M::F::ZERO;
     let zabs = M::mla(zr, zr, n2i * n2i).sqrt();
-    let t = (0.5 * (zabs + zr.abs())).sqrt();
-    let other = n2i / (2.0 * if t > 0.0 { t } else { 1.0 });
+    let t = (M::F::of(0.5) * (zabs + zr.abs())).sqrt();
+    let other = n2i / (M::F::of(2.0) * if t > M::F::ZERO { t } else { M::F::ONE });
     if nonneg {
         (t, other)
     } else {
@@ -165,7 +170,8 @@ pub fn transmitted_q_complex<M: Math>(n2r: f64, n2i: f64, sin2_beta: f64) -> (f6
 /// At `c + q = 0` (only `N = 1` at exactly grazing facet incidence) the grazing limit
 /// `rs = rp = −1` is taken: `[1, 1, 0, 0]` (docs/model.md §9.5).
 #[inline(always)]
-pub fn reflectances<M: Math>(n2r: f64, n2i: f64, c: f64, qr: f64, qi: f64) -> [f64; 4] {
+pub fn reflectances<M: Math>(n2r: M::F, n2i: M::F, c: M::F, qr: M::F, qi: M::F) -> [M::F; 4] {
+    let (zero, one) = (M::F::ZERO, M::F::ONE);
     let qi2 = qi * qi;
     let ns = M::mla(c - qr, c - qr, qi2);
     let ds = M::mla(c + qr, c + qr, qi2);
@@ -173,11 +179,11 @@ pub fn reflectances<M: Math>(n2r: f64, n2i: f64, c: f64, qr: f64, qi: f64) -> [f
     let np = M::mla(nr - qr, nr - qr, (ni - qi) * (ni - qi));
     let dp = M::mla(nr + qr, nr + qr, (ni + qi) * (ni + qi));
     let prod = ds * dp;
-    let degenerate = prod == 0.0;
-    let inv = 1.0 / if degenerate { 1.0 } else { prod };
+    let degenerate = prod == zero;
+    let inv = one / if degenerate { one } else { prod };
     let (inv_s, inv_p) = (dp * inv, ds * inv);
     if degenerate {
-        [1.0, 1.0, 0.0, 0.0]
+        [one, one, zero, zero]
     } else {
         [ns * inv_s, np * inv_p, inv_s, inv_p]
     }
@@ -188,14 +194,14 @@ pub fn reflectances<M: Math>(n2r: f64, n2i: f64, c: f64, qr: f64, qi: f64) -> [f
 /// are 0 (the grazing limit).
 #[inline(always)]
 pub fn amplitudes<M: Math>(
-    n2r: f64,
-    n2i: f64,
-    c: f64,
-    qr: f64,
-    qi: f64,
-    inv_s: f64,
-    inv_p: f64,
-) -> [f64; 4] {
+    n2r: M::F,
+    n2i: M::F,
+    c: M::F,
+    qr: M::F,
+    qi: M::F,
+    inv_s: M::F,
+    inv_p: M::F,
+) -> [M::F; 4] {
     let (ar, ai) = (c - qr, -qi);
     let (br, bi) = (c + qr, qi);
     let (nr, ni) = (n2r * c, n2i * c);
@@ -207,8 +213,9 @@ pub fn amplitudes<M: Math>(
         M::mla(er, fr, ei * fi) * inv_p,
         M::mla(ei, fr, -(er * fi)) * inv_p,
     ];
-    if inv_s == 0.0 {
-        [-1.0, 0.0, -1.0, 0.0]
+    let (zero, one) = (M::F::ZERO, M::F::ONE);
+    if inv_s == zero {
+        [-one, zero, -one, zero]
     } else {
         v
     }

@@ -6,7 +6,7 @@
 //! [`crate::optics::stokes`]; so the mirror at normal incidence is `R_F·diag(1, 1, −1, −1)` here,
 //! not the identity (the reflected frame's s axis is the incident one's, its p axis reversed).
 
-use crate::numeric::math::Math;
+use crate::numeric::math::{Math, Real};
 use crate::optics::jones::Jones;
 use crate::optics::stokes::Stokes;
 use num_complex::Complex64;
@@ -281,10 +281,10 @@ impl IndexMut<(usize, usize)> for Mueller {
 /// of the diagonal matrix. Takes `|rs|²`, `|rp|²` and the real and imaginary parts of rs, rp.
 #[inline(always)]
 pub fn diagonal_coefficients<M: Math>(
-    rs2: f64,
-    rp2: f64,
-    [rs_r, rs_i, rp_r, rp_i]: [f64; 4],
-) -> [f64; 4] {
+    rs2: M::F,
+    rp2: M::F,
+    [rs_r, rs_i, rp_r, rp_i]: [M::F; 4],
+) -> [M::F; 4] {
     let [a, b] = intensity_coefficients(rs2, rp2);
     [
         a,
@@ -298,8 +298,9 @@ pub fn diagonal_coefficients<M: Math>(
 /// [`diagonal_coefficients`], all that the intensity and the linear polarization for
 /// unpolarized input need (`A = R_F`, eq. 1).
 #[inline(always)]
-pub fn intensity_coefficients(rs2: f64, rp2: f64) -> [f64; 2] {
-    [0.5 * (rs2 + rp2), 0.5 * (rs2 - rp2)]
+pub fn intensity_coefficients<T: Real>(rs2: T, rp2: T) -> [T; 2] {
+    let half = T::of(0.5);
+    [half * (rs2 + rp2), half * (rs2 - rp2)]
 }
 
 /// The model's pBRDF, row-major (docs/model.md §6, §12):
@@ -311,7 +312,8 @@ pub fn intensity_coefficients(rs2: f64, rp2: f64) -> [f64; 2] {
 /// cos2η_r, sin2η_r]` ([`crate::geometry::angles::rotations`]); `R` is [`Mueller::rotator`].
 /// That this equals [`Mueller::from_jones`] of T is tested.
 #[inline(always)]
-pub fn facet_pbrdf<M: Math>(gm: [f64; 4], fv: f64, rot: [f64; 4]) -> [f64; 16] {
+pub fn facet_pbrdf<M: Math>(gm: [M::F; 4], fv: M::F, rot: [M::F; 4]) -> [M::F; 16] {
+    let zero = M::F::ZERO;
     let [ga, gb, gc, gs] = gm;
     let [ci2, si2, cr2, sr2] = rot;
     let p1 = ga * ci2;
@@ -322,7 +324,7 @@ pub fn facet_pbrdf<M: Math>(gm: [f64; 4], fv: f64, rot: [f64; 4]) -> [f64; 16] {
         ga + fv,
         gb * ci2,
         gb * si2,
-        0.0,
+        zero,
         cr2 * gb,
         M::mla(cr2, p1, sr2 * q1),
         M::mla(cr2, p2, -(sr2 * q2)),
@@ -331,7 +333,7 @@ pub fn facet_pbrdf<M: Math>(gm: [f64; 4], fv: f64, rot: [f64; 4]) -> [f64; 16] {
         M::mla(sr2, p1, -(cr2 * q1)),
         M::mla(sr2, p2, cr2 * q2),
         cr2 * gs,
-        0.0,
+        zero,
         gs * si2,
         -(gs * ci2),
         gc,

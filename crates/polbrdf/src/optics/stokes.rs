@@ -16,7 +16,7 @@
 //!   convention.
 //! - AoLP is measured from s toward p, in (−90°, 90°].
 
-use crate::numeric::math::{Math, Std};
+use crate::numeric::math::{Math, Real, Std};
 use num_complex::Complex64;
 use std::ops::{Index, IndexMut};
 
@@ -147,11 +147,11 @@ impl std::ops::Add for Stokes {
 
 /// `num/den`, or 0 when `den ≤ 0` (no light).
 #[inline(always)]
-fn ratio(num: f64, den: f64) -> f64 {
-    if den > 0.0 {
+fn ratio<T: Real>(num: T, den: T) -> T {
+    if den > T::ZERO {
         num / den
     } else {
-        0.0
+        T::ZERO
     }
 }
 
@@ -159,13 +159,13 @@ fn ratio(num: f64, den: f64) -> f64 {
 /// 0 when `S0 ≤ 0`. [`Stokes::dolp`] and the batch engine (which knows `lin` in closed form)
 /// both use it.
 #[inline(always)]
-pub fn dolp(lin: f64, s0: f64) -> f64 {
+pub fn dolp<T: Real>(lin: T, s0: T) -> T {
     ratio(lin, s0)
 }
 
 /// The AoLP `½·atan2(S2, S1)` (rad, in (−π/2, π/2], from s toward p), with the arctangent of
 /// backend `M`. [`Stokes::aolp`] and the batch engine both use it.
 #[inline(always)]
-pub fn aolp<M: Math>(s1: f64, s2: f64) -> f64 {
-    0.5 * M::atan2(s2, s1)
+pub fn aolp<M: Math>(s1: M::F, s2: M::F) -> M::F {
+    M::F::of(0.5) * M::atan2(s2, s1)
 }
