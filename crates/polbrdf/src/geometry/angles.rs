@@ -125,7 +125,7 @@ pub fn beta<M: Math>(h: &HalfVector<M::F>, sin2_beta: M::F) -> (M::F, M::F) {
 /// the azimuths are given in f64 and their half difference is formed in f64 on every path).
 #[inline(always)]
 pub fn phi_n<M: Math>(h: &HalfVector<M::F>, t: &Trig<M::F>, phi_scale: f64) -> M::F {
-    let level = M::F::of(8.0 * f64::EPSILON * phi_scale) * (t.si + t.sr);
+    let level = M::F::of(8.0 * f64::EPSILON) * (t.si + t.sr) * M::F::of(phi_scale);
     let d = M::atan2_pos(h.across.abs(), h.along.abs());
     if h.rho > level {
         d.min(M::F::of(std::f64::consts::FRAC_PI_2))
