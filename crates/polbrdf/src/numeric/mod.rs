@@ -5,5 +5,6 @@
 
 pub mod linalg;
 pub mod math;
+pub(crate) mod math32;
 pub mod quadrature;
 pub mod sample;
