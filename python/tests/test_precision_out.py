@@ -29,19 +29,27 @@ def _geometries(n: int, seed: int = 1) -> tuple[np.ndarray, ...]:
         polbrdf.Material(n=1.5, sigma_deg=0.5, rho_d=0.02, rho_v=0.01),
     ],
 )
-def test_float32_is_float64_rounded_within_1e5_of_f00(material: polbrdf.Material) -> None:
+def test_float32_is_within_1e5_of_f00(material: polbrdf.Material) -> None:
+    # Computed in single precision (docs/model.md §12): every entry within 1e-5·F00 of float64
+    # (plus half f32's smallest subnormal, for results at the bottom of its range).
     g = _geometries(20_000)
     f64 = polbrdf.mueller(material, *g)
     f32 = polbrdf.mueller(material, *g, precision="float32")
     assert f32.dtype == np.float32 and f32.shape == f64.shape
-    # Bit for bit the float64 result rounded to nearest.
-    np.testing.assert_array_equal(f32, f64.astype(np.float32))
     f00 = f64[..., 0, 0]
     err = np.abs(f32.astype(np.float64) - f64).max(axis=(-1, -2))
     big = f00 > 1e-35
     assert big.sum() > 1000
-    assert np.all(err[big] <= 1e-5 * f00[big])
-    assert np.all(err <= np.abs(f64).max(axis=(-1, -2)) * 2.0**-24 + 2.0**-150)
+    assert np.all(err <= 1e-5 * f00 + 2.0**-150)
+
+
+def test_float32_is_computed_in_single_precision(paint: polbrdf.Material) -> None:
+    # Not float64 rounded: most elements of a rough paint differ from that in the last bits.
+    g = _geometries(20_000)
+    f64 = polbrdf.mueller(paint, *g)
+    f32 = polbrdf.mueller(paint, *g, precision="float32")
+    differs = np.any(f32 != f64.astype(np.float32), axis=(-1, -2))
+    assert differs.mean() > 0.3
 
 
 def test_float32_on_the_test_vectors(vectors: list[dict]) -> None:
@@ -62,7 +70,12 @@ def test_out_is_filled_and_returned(paint: polbrdf.Material) -> None:
         out = np.full(want.shape, np.nan, dtype=dtype)
         got = polbrdf.mueller(paint, *g, out=out)
         assert got is out
-        np.testing.assert_array_equal(out, want.astype(dtype))
+        if dtype == np.float64:
+            np.testing.assert_array_equal(out, want)
+        else:
+            # The float32 path (precision from out's dtype), bit for bit.
+            np.testing.assert_array_equal(out, polbrdf.mueller(paint, *g, precision="float32"))
+            assert np.all(np.abs(out - want).max(axis=(-1, -2)) <= 1e-5 * want[..., 0, 0] + 1e-44)
     # Multi-dimensional broadcast shapes.
     ti = np.linspace(0.0, 80.0, 7)[:, None]
     tr = np.linspace(0.0, 80.0, 5)[None, :]

@@ -1,9 +1,8 @@
-//! The single-precision output of the batch engine (`Precision::F32`, docs/model.md §12): every
-//! entry is the f64 result rounded to the nearest f32 — bit for bit `(f64 result) as f32` — so
-//! within `2⁻²⁴·|F_ij| + 2⁻¹⁵⁰ ≤ 1e-5·F00` (for F00 above f32's subnormal range) of float64, on
-//! every test vector and on random materials and geometries (grazing, near-specular, large σ,
-//! metals with large k, the extreme bounds of the parameters); entries beyond f32's range are
-//! refused.
+//! The single-precision output of the batch engine (`Precision::F32`, docs/model.md §12): the
+//! model computed in f32, every entry within `1e-5·F00 + 2⁻¹⁵⁰` of float64, on every test
+//! vector and on random materials and geometries (grazing, near-specular, large σ, metals with
+//! large k, indices near 1, the extreme bounds of the parameters); most elements really are
+//! computed in f32; entries beyond f32's range are refused.
 
 use crate::common::{cases, geometry, spec_of};
 use crate::kernel::{random_geometry, random_material};
@@ -20,8 +19,9 @@ const TOL: f64 = 1e-5;
 const HALF_SUBNORMAL: f64 = 7.006_492_321_624_085e-46; // 2⁻¹⁵⁰
 
 /// Evaluates `geoms` (radians) in both precisions, checks every entry and returns the worst
-/// deviation relative to F00 (over elements with F00 ≥ 1e-35).
-fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> f64 {
+/// deviation relative to F00 (over elements with F00 ≥ 1e-35) and the fraction of elements
+/// whose f32 result is not the f64 one rounded (computed in f32).
+fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> (f64, f64) {
     let cols: [Vec<f64>; 4] = std::array::from_fn(|c| geoms.iter().map(|g| g[c]).collect());
     let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
     let engine = Engine::new(m);
@@ -30,22 +30,18 @@ fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> f64 {
     engine.mueller_into(&batch, &mut f64s).unwrap();
     engine.mueller_f32_into(&batch, &mut f32s).unwrap();
     let mut worst = 0.0_f64;
+    let mut in_f32 = 0usize;
     for (i, (a, b)) in f64s.iter().zip(&f32s).enumerate() {
         let f00 = a[0];
+        in_f32 += usize::from((0..16).any(|e| b[e].to_bits() != (a[e] as f32).to_bits()));
         for e in 0..16 {
-            // Bit for bit the f64 result rounded to nearest.
-            assert_eq!(
-                b[e].to_bits(),
-                (a[e] as f32).to_bits(),
-                "{label}: element {i} {:?} entry {e}: {} vs {}",
+            let err = (f64::from(b[e]) - a[e]).abs();
+            assert!(
+                err <= TOL * f00 + HALF_SUBNORMAL,
+                "{label}: element {i} {:?} entry {e}: {} vs {}: error {err:e}, F00 {f00:e}",
                 geoms[i],
                 b[e],
                 a[e]
-            );
-            let err = (f64::from(b[e]) - a[e]).abs();
-            assert!(
-                err <= a[e].abs() * 2f64.powi(-24) + HALF_SUBNORMAL,
-                "{label}: element {i} entry {e}: error {err:e} beyond f32 rounding"
             );
             // A physical Mueller matrix: |F_ij| ≤ F00, so the error is within 2⁻²⁴·F00 + 2⁻¹⁵⁰.
             assert!(
@@ -60,24 +56,101 @@ fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> f64 {
             }
         }
     }
-    worst
+    (worst, in_f32 as f64 / geoms.len().max(1) as f64)
 }
 
 #[test]
-fn float32_on_every_test_vector_is_float64_rounded() {
+fn float32_on_every_test_vector_is_within_1e5_of_float64() {
     let mut worst = 0.0_f64;
     for c in &cases() {
         let m = spec_of(&c.inputs).build().unwrap();
         let g = geometry(&c.inputs);
-        let w = check(
+        let (w, _) = check(
             &c.id,
             &m,
             &[[g.theta_i(), g.phi_i(), g.theta_r(), g.phi_r()]],
         );
         worst = worst.max(w);
     }
-    assert!(worst < 1e-7, "worst {worst:e}·F00");
+    assert!(worst <= TOL, "worst {worst:e}·F00");
     eprintln!("float32 vs float64 on the test vectors: max |ΔF|/F00 = {worst:e}");
+}
+
+#[test]
+fn float32_is_computed_in_f32_for_the_presets() {
+    // Not the f64 result rounded: most elements of ordinary materials go through the f32
+    // kernel (a test that would fail if single precision silently took the f64 path).
+    let mut rng = Rng::new(5);
+    let geoms: Vec<[f64; 4]> = (0..4000).map(|_| random_geometry(&mut rng)).collect();
+    for preset in ["paint", "glass", "aluminium", "gold", "iron"] {
+        let m = polbrdf::preset(preset).unwrap().build().unwrap();
+        let (worst, in_f32) = check(preset, &m, &geoms);
+        eprintln!(
+            "{preset}: max |ΔF|/F00 = {worst:e}, {:.1} % in f32",
+            100.0 * in_f32
+        );
+        // Random directions over the hemispheres lie mostly far from a narrow lobe, where D's
+        // tail is left to f64: the rough presets are mostly f32.
+        if ["paint", "aluminium"].contains(&preset) {
+            assert!(
+                in_f32 > 0.5,
+                "{preset}: only {in_f32} of the elements computed in f32"
+            );
+        }
+    }
+}
+
+#[test]
+fn float32_down_the_lobe_tail_refines_d_and_stays_in_f32() {
+    // Beyond bθN² = 20 D is recomputed from an f64 θN (docs/model.md §12): accurate to 1e-5
+    // far down the tail, and still an f32 result (not the f64 one rounded) until D nears
+    // f32's range.
+    let m = MaterialSpec::new(1.5, 5.0).build().unwrap();
+    let b = m.params().distribution.b();
+    let mut geoms = vec![];
+    for i in 0..2000 {
+        let tr = (30.0 + 59.0 * i as f64 / 2000.0).to_radians();
+        geoms.push([
+            30f64.to_radians(),
+            0.2,
+            tr,
+            0.2 + std::f64::consts::PI - 0.3 * (i % 3) as f64,
+        ]);
+    }
+    let tail: Vec<[f64; 4]> = geoms
+        .into_iter()
+        .filter(|g| {
+            let v = polbrdf::Geometry::new(g[0], g[1], g[2], g[3])
+                .unwrap()
+                .angle_variables();
+            let y = b * v.unwrap().theta_n.powi(2);
+            (25.0..60.0).contains(&y)
+        })
+        .collect();
+    assert!(tail.len() > 300, "{}", tail.len());
+    let (worst, in_f32) = check("σ = 5°, D's tail", &m, &tail);
+    eprintln!(
+        "D's tail: max |ΔF|/F00 = {worst:e}, {:.1} % in f32",
+        100.0 * in_f32
+    );
+    assert!(in_f32 > 0.9, "{in_f32}");
+}
+
+#[test]
+fn float64_rounded_is_float64_rounded_bit_for_bit() {
+    let m = polbrdf::preset("paint").unwrap().build().unwrap();
+    let mut rng = Rng::new(9);
+    let geoms: Vec<[f64; 4]> = (0..500).map(|_| random_geometry(&mut rng)).collect();
+    let cols: [Vec<f64>; 4] = std::array::from_fn(|c| geoms.iter().map(|g| g[c]).collect());
+    let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
+    let k = polbrdf::engine::Kernel::new(&m);
+    let mut a = vec![[0.0f64; 16]; batch.len()];
+    let mut b = vec![[0.0f32; 16]; batch.len()];
+    k.mueller_into(&batch, 0, &mut a);
+    k.mueller_f64_rounded_into(&batch, 0, &mut b);
+    for (x, y) in a.iter().zip(&b) {
+        assert_eq!(x.map(|v| (v as f32).to_bits()), y.map(f32::to_bits));
+    }
 }
 
 #[test]
@@ -88,7 +161,7 @@ fn float32_on_random_materials_and_edge_cases() {
         let spec = random_material(&mut rng);
         let m = spec.build().unwrap();
         let geoms: Vec<[f64; 4]> = (0..300).map(|_| random_geometry(&mut rng)).collect();
-        worst = worst.max(check(&format!("material {mi} {spec:?}"), &m, &geoms));
+        worst = worst.max(check(&format!("material {mi} {spec:?}"), &m, &geoms).0);
     }
     // Large σ, narrow lobes, metals with large k, near-unity and huge indices; grazing and
     // near-specular geometries come from `random_geometry`.
@@ -102,6 +175,10 @@ fn float32_on_random_materials_and_edge_cases() {
         (3.0, 1e3),
         (1e6, 1e6),
         (1.02, 0.0),
+        (1.1, 0.0),
+        (1.2, 0.01),
+        (0.8, 0.0),
+        (0.95, 0.3),
     ] {
         let mut s = MaterialSpec::new(n, 10.0);
         s.k = k;
@@ -119,9 +196,9 @@ fn float32_on_random_materials_and_edge_cases() {
                 0.3 + std::f64::consts::PI - 1e-6 * (i % 5) as f64,
             ]);
         }
-        worst = worst.max(check(&format!("{spec:?}"), &m, &geoms));
+        worst = worst.max(check(&format!("{spec:?}"), &m, &geoms).0);
     }
-    assert!(worst < 1e-7, "worst {worst:e}·F00");
+    assert!(worst <= TOL, "worst {worst:e}·F00");
     eprintln!("float32 vs float64 on random cases: max |ΔF|/F00 = {worst:e}");
 }
 

@@ -161,8 +161,9 @@ impl<'a> Engine<'a> {
         Ok(())
     }
 
-    /// As [`Engine::mueller_into`] in single precision ([`Precision::F32`]): each entry
-    /// computed in f64 and rounded to the nearest f32 as it is stored.
+    /// As [`Engine::mueller_into`] in single precision ([`Precision::F32`]): the model computed
+    /// in f32, every entry within `1e-5·F00` of f64 ([`Kernel::mueller_f32_into`],
+    /// docs/model.md §12).
     ///
     /// # Errors
     /// [`crate::Error::LengthMismatch`] as [`Engine::mueller_into`];

@@ -38,12 +38,43 @@ pub(crate) trait Thresholds: Real {
     /// Results below this (but not zero) are near the subnormal range, where relative accuracy
     /// ends.
     const TINY: Self;
+    /// Below `s_z = cosθi + cosθr = 2 cos v cos u` of this (both directions near grazing),
+    /// `cos v = cosθr cos u − sinθr sin u` ([`angles::half_vector`]) has cancelled too far.
+    /// 0 in f64, where it never shows at 1e-12.
+    const SZ_MIN: Self;
+    /// The largest condition number of the Fresnel amplitudes as `N² → 1` the kernel accepts
+    /// (`crate::engine::kernel`'s `index_ill`).
+    const INDEX_COND_MAX: f64;
+    /// Whether an element with a non-finite entry takes the one-geometry path (in f32, where
+    /// an intermediate can overflow that f64 holds).
+    const CHECK_FINITE: bool;
+    /// Whether D beyond [`Thresholds::D_EXPONENT_MAX`] is refined (recomputed from an f64 θN,
+    /// [`front_with`]'s `refine`) instead of sending the element to the one-geometry path.
+    const REFINE_D: bool;
 }
 
 impl Thresholds for f64 {
     const D_EXPONENT_MAX: f64 = 600.0;
     const BRANCH_POINT_MIN: f64 = 1e-4;
     const TINY: f64 = 1e-280;
+    const SZ_MIN: f64 = 0.0;
+    const INDEX_COND_MAX: f64 = 100.0;
+    const CHECK_FINITE: bool = false;
+    const REFINE_D: bool = false;
+}
+
+/// The f32 kernel's bounds for an accuracy of 1e-5·F00 against f64 (docs/model.md §12,
+/// "Precision"): D's relative error is about `2bθN²·δθN/θN` with `δθN/θN` a few f32 ulps, so
+/// `bθN² ≤ 20`; `cos v` loses `1/cos v` ulps; the Fresnel amplitudes' condition number times
+/// f32's ε stays near 1e-6 at 20.
+impl Thresholds for f32 {
+    const D_EXPONENT_MAX: f32 = 20.0;
+    const BRANCH_POINT_MIN: f32 = 0.03;
+    const TINY: f32 = 1e-30;
+    const SZ_MIN: f32 = 0.1;
+    const INDEX_COND_MAX: f64 = 20.0;
+    const CHECK_FINITE: bool = true;
+    const REFINE_D: bool = true;
 }
 
 /// The angles (rad) of one block.
@@ -270,11 +301,21 @@ pub(crate) struct Front<const N: usize, T = f64> {
     pub n2i: Lanes<N, T>,
     /// D and SO's numerator and denominator (between stages).
     d: Lanes<N, T>,
+    /// D beyond [`Thresholds::D_EXPONENT_MAX`], to be refined (with
+    /// [`Thresholds::REFINE_D`]).
+    d_tail: [bool; N],
     so_num: Lanes<N, T>,
     so_den: Lanes<N, T>,
 }
 
 impl<const N: usize, T: Real> Front<N, T> {
+    /// D, the lanes whose D is to be refined, and the fallback mask (between [`front_q_d`]
+    /// and [`front_terms`]).
+    #[inline(always)]
+    pub(crate) fn d_tail_mut(&mut self) -> (&mut Lanes<N, T>, &[bool; N], &mut [bool; N]) {
+        (&mut self.d, &self.d_tail, &mut self.fallback)
+    }
+
     pub(crate) fn zeroed() -> Self {
         let z = [T::ZERO; N];
         Self {
@@ -286,6 +327,7 @@ impl<const N: usize, T: Real> Front<N, T> {
             n2r: z,
             n2i: z,
             d: z,
+            d_tail: [false; N],
             so_num: z,
             so_den: z,
         }
@@ -296,6 +338,23 @@ impl<const N: usize, T: Real> Front<N, T> {
 /// D, SO, `g`, `f_v` (eqs. 4, 3, 1, 6), for the index lanes of `b`.
 #[inline(always)]
 pub(crate) fn front<M: Math, const N: usize>(
+    p: &ModelParams,
+    geo: &Geom<N, M::F>,
+    b: &IndexLanes<N, M::F>,
+    f: &mut Front<N, M::F>,
+) where
+    M::F: Thresholds,
+{
+    front_q_d::<M, N>(p, geo, b, f);
+    front_terms::<M, N>(p, geo, f);
+}
+
+/// The first part of [`front`]: `q` and D. Where [`Thresholds::REFINE_D`], the lanes with D
+/// beyond [`Thresholds::D_EXPONENT_MAX`] (where θN's rounding shows) are flagged in
+/// `f.d_tail` instead of `f.fallback`, for the caller to replace their D by a more accurate
+/// value ([`Front::d_tail_mut`]) before [`front_terms`].
+#[inline(always)]
+pub(crate) fn front_q_d<M: Math, const N: usize>(
     p: &ModelParams,
     geo: &Geom<N, M::F>,
     b: &IndexLanes<N, M::F>,
@@ -335,12 +394,26 @@ pub(crate) fn front<M: Math, const N: usize>(
     for j in 0..N {
         let tn = geo.facet.v[3][j];
         d[j] = dist.eval_with::<M>(tn);
-        // D so far down its tail that θN's last bit shows, or near the underflow limit.
+        // D so far down its tail that θN's last bit shows, or near the underflow limit; both
+        // directions so near grazing that cos v has cancelled.
         let y = dist.exponent(tn);
-        f.fallback[j] |= dist.a() > 0.0
-            && y > M::F::of(-750.0)
-            && (d[j] < M::F::TINY || -y > M::F::D_EXPONENT_MAX);
+        let lobe = dist.a() > 0.0 && y > M::F::of(-750.0);
+        let tail = lobe && -y > M::F::D_EXPONENT_MAX;
+        f.fallback[j] |= lobe && (d[j] < M::F::TINY || (tail && !M::F::REFINE_D));
+        f.d_tail[j] = tail && M::F::REFINE_D;
+        f.fallback[j] |= geo.facet.v[8][j] < M::F::SZ_MIN;
     }
+}
+
+/// The second part of [`front`]: SO, `g` and `f_v` from D.
+#[inline(always)]
+pub(crate) fn front_terms<M: Math, const N: usize>(
+    p: &ModelParams,
+    geo: &Geom<N, M::F>,
+    f: &mut Front<N, M::F>,
+) where
+    M::F: Thresholds,
+{
     let (so_num, so_den) = (&mut f.so_num, &mut f.so_den);
     so_num.fill(M::F::ONE);
     so_den.fill(M::F::ONE);
@@ -452,6 +525,11 @@ pub(crate) fn mueller<M: Math, const N: usize>(
             mueller::facet_pbrdf::<M>(coef.map(|x| g * x), f.fv[j], angles::rotations::<M>(pairs));
         let valid = geo.valid[j];
         f.fallback[j] |= valid && v[0] > zero && v[0] < M::F::TINY;
+        if M::F::CHECK_FINITE {
+            // x·0 is 0 for every finite x, NaN for ±∞ and NaN.
+            let probe = v.iter().fold(zero, |acc, x| acc + *x * zero);
+            f.fallback[j] |= valid && probe != zero;
+        }
         for (o, x) in out.iter_mut().zip(v) {
             o[j] = if valid { x } else { zero };
         }

@@ -5,12 +5,16 @@
 
 #![allow(clippy::needless_range_loop)]
 
-use crate::engine::block::{self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes};
+use crate::engine::block::{
+    self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds,
+};
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
+use crate::geometry::angles::{self, Trig};
 use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
 use crate::model::{Evaluation, Material, ModelParams};
 use crate::numeric::math::{FastPortable, Math};
+use crate::numeric::math32::SinglePortable;
 use crate::optics::dispersion::SpectralIndex;
 use crate::optics::fresnel::{index_squared, RefractiveIndex};
 use crate::optics::mueller::Mueller;
@@ -162,18 +166,25 @@ impl SpectralCache {
     }
 }
 
-/// Whether an index is outside the kernel's accurate domain: the Fresnel amplitudes lose
-/// relative accuracy as `N² → 1` (`rs = (1 − N²)/(c + q)²`), with condition
-/// `(1 + sqrt(|N²| + 1))²/|1 − N²|` — at 100 or more such elements take the one-geometry path —
-/// and magnitudes of `N²` beyond `10^±100` are left to it too.
+/// Whether an index is outside the f64 kernel's accurate domain ([`index_ill_for`]).
 #[inline(always)]
 fn index_ill(n2r: f64, n2i: f64) -> bool {
+    index_ill_for::<f64>(n2r, n2i)
+}
+
+/// Whether an index is outside the accurate domain of the kernel in `T`: the Fresnel
+/// amplitudes lose relative accuracy as `N² → 1` (`rs = (1 − N²)/(c + q)²`), with condition
+/// `(1 + sqrt(|N²| + 1))²/|1 − N²|` — at [`Thresholds::INDEX_COND_MAX`] or more (100 in f64,
+/// 20 in f32) such elements take the one-geometry path — and magnitudes of `N²` beyond
+/// `10^±100` are left to it too.
+#[inline(always)]
+fn index_ill_for<T: Thresholds>(n2r: f64, n2i: f64) -> bool {
     // Squares, not `hypot`: this runs per element for a per-element index (|N²| ≤ 2·10¹², so
     // nothing overflows).
     let n2_abs = (n2r * n2r + n2i * n2i).sqrt();
     let c = 1.0 + (n2_abs + 1.0).sqrt();
     let gap = ((1.0 - n2r) * (1.0 - n2r) + n2i * n2i).sqrt();
-    !(c * c < 100.0 * gap && n2_abs < 1e100 && n2_abs > 1e-100)
+    !(c * c < T::INDEX_COND_MAX * gap && n2_abs < 1e100 && n2_abs > 1e-100)
 }
 
 /// The fast evaluator of one material (see the module documentation). Cheap to build.
@@ -188,6 +199,11 @@ pub struct Kernel<'a> {
     /// Parameters outside the kernel's accurate domain (extreme magnitudes): every element
     /// takes the one-geometry path.
     scalar_only: bool,
+    /// Parameters inside the f32 kernel's domain (else single precision is computed in f64
+    /// and rounded).
+    single: bool,
+    /// A constant index outside the f32 kernel's domain ([`index_ill_for`]).
+    ill32: bool,
     /// Write full-Mueller results with non-temporal stores (for large outputs).
     stream: bool,
 }
@@ -227,6 +243,11 @@ impl<'a> Kernel<'a> {
             },
             level,
             scalar_only: !in_domain || (d.a() > 0.0 && d.a() < 1e-200),
+            single: [d.a(), d.b(), inv_omega, two_over_tau, p.rho_v, p.rho_d]
+                .iter()
+                .all(|x| *x < 1e20)
+                && (d.a() == 0.0 || d.a() > 1e-20),
+            ill32: index_ill_for::<f32>(n2r, n2i),
             stream: false,
         }
     }
@@ -291,13 +312,44 @@ impl<'a> Kernel<'a> {
         self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
     }
 
-    /// As [`Kernel::mueller_into`], each entry computed in f64 and rounded to the nearest f32
-    /// when stored (docs/model.md §12, "Precision"). Returns whether some finite entry was
-    /// beyond f32's range (stored as ±∞).
+    /// As [`Kernel::mueller_into`] in single precision (docs/model.md §12, "Precision"): the
+    /// same formulas computed in f32, within 1e-5·F00 of the f64 results; an element where f32
+    /// would not reach that (D far down its tail, both directions near grazing, an index near
+    /// 1, a non-finite intermediate) is computed in f64 and rounded, as is every element of a
+    /// material whose parameters are beyond f32's comfortable range. Returns whether some
+    /// finite entry was beyond f32's range (stored as ±∞).
     ///
     /// # Panics
     /// When the range exceeds the batch (or a per-element index).
     pub fn mueller_f32_into(
+        &self,
+        batch: &GeometryBatch<'_>,
+        start: usize,
+        out: &mut [[f32; 16]],
+    ) -> bool {
+        let src = Computed(BatchSource::new(batch, start, out.len()));
+        let index = self.index_at(start, out.len());
+        if self.scalar_only || !self.single {
+            return self.run_mueller::<_, _, BLOCK>(&src, index, out);
+        }
+        let mut job = MuellerF32Job::<_, BLOCK> {
+            kernel: self,
+            src: &src,
+            index,
+            out,
+            overflow: false,
+        };
+        dispatch(self.level, &mut job);
+        job.overflow
+    }
+
+    /// As [`Kernel::mueller_f32_into`], computed in f64 and each entry rounded to the nearest
+    /// f32 (the reference the f32 kernel is tested against, and what single precision gave
+    /// before it).
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn mueller_f64_rounded_into(
         &self,
         batch: &GeometryBatch<'_>,
         start: usize,
@@ -550,6 +602,16 @@ impl IndexSource<'_> {
         len: usize,
         cache: &mut SpectralCache,
     ) -> IndexLanes<N> {
+        self.lanes_at(|j| start + if j < len { j } else { 0 }, cache)
+    }
+
+    /// `N²` and the domain flag of the elements at positions `pos(0) .. pos(N − 1)`.
+    #[inline(always)]
+    fn lanes_at<const N: usize>(
+        &self,
+        pos: impl Fn(usize) -> usize,
+        cache: &mut SpectralCache,
+    ) -> IndexLanes<N> {
         match *self {
             IndexSource::Spectral { index, wavelengths } => {
                 let mut b = IndexLanes {
@@ -560,7 +622,7 @@ impl IndexSource<'_> {
                 let mut last = f64::NAN;
                 let mut value = (0.0, 0.0, true);
                 for j in 0..N {
-                    let l = wavelengths[start + if j < len { j } else { 0 }];
+                    let l = wavelengths[pos(j)];
                     // Runs of one wavelength (wavelength-major) skip the table.
                     if l != last {
                         value = cache.get(index, l);
@@ -582,7 +644,7 @@ impl IndexSource<'_> {
                     index_ill: [false; N],
                 };
                 for j in 0..N {
-                    let i = start + if j < len { j } else { 0 };
+                    let i = pos(j);
                     (b.n2r[j], b.n2i[j]) = index_squared(cols.n[i], cols.k[i]);
                 }
                 for j in 0..N {
@@ -590,6 +652,33 @@ impl IndexSource<'_> {
                 }
                 b
             }
+        }
+    }
+
+    /// [`IndexSource::lanes`] for the f32 kernel: `N²` rounded to f32, and the f32 kernel's
+    /// (narrower) domain; `ill32` is that domain's flag of a constant index.
+    #[inline(always)]
+    fn lanes_f32<const N: usize>(
+        &self,
+        start: usize,
+        len: usize,
+        ill32: bool,
+        cache: &mut SpectralCache,
+    ) -> IndexLanes<N, f32> {
+        if let IndexSource::Constant { n2r, n2i, .. } = *self {
+            return IndexLanes {
+                n2r: [n2r as f32; N],
+                n2i: [n2i as f32; N],
+                index_ill: [ill32; N],
+            };
+        }
+        let w = self.lanes::<N>(start, len, cache);
+        IndexLanes {
+            n2r: w.n2r.map(|x| x as f32),
+            n2i: w.n2i.map(|x| x as f32),
+            index_ill: std::array::from_fn(|j| {
+                w.index_ill[j] || index_ill_for::<f32>(w.n2r[j], w.n2i[j])
+            }),
         }
     }
 }
@@ -683,13 +772,13 @@ fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize, b: &mut Bl
 trait Blocks {
     /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`:
     /// computed in `scratch` (and returned from there) or taken from where it was prepared.
-    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
         phi_n: bool,
-        scratch: &'s mut GeomScratch<N>,
-    ) -> &'s Geom<N>;
+        scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F>;
 
     /// Element `i` by the one-geometry path.
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation;
@@ -700,13 +789,13 @@ struct Computed<S>(S);
 
 impl<S: Source> Blocks for Computed<S> {
     #[inline(always)]
-    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
         phi_n: bool,
-        scratch: &'s mut GeomScratch<N>,
-    ) -> &'s Geom<N> {
+        scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F> {
         load::<S, N>(&self.0, start, len, &mut scratch.input);
         block::geometry::<M, N, PAIRS>(scratch, phi_n);
         &scratch.geo
@@ -728,13 +817,13 @@ struct Variables<'v>(&'v [AngleVariables]);
 
 impl Blocks for Variables<'_> {
     #[inline(always)]
-    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
         _phi_n: bool,
-        scratch: &'s mut GeomScratch<N>,
-    ) -> &'s Geom<N> {
+        scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F> {
         let v: [AngleVariables; N] =
             std::array::from_fn(|j| self.0[start + if j < len { j } else { 0 }]);
         block::geometry_of_variables(&v, &mut scratch.geo);
@@ -835,18 +924,18 @@ struct PreparedRange<'p> {
 
 impl Blocks for PreparedRange<'_> {
     #[inline(always)]
-    fn geometry<'s, M: Math<F = f64>, const N: usize, const PAIRS: bool>(
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         _len: usize,
         _phi_n: bool,
-        _scratch: &'s mut GeomScratch<N>,
-    ) -> &'s Geom<N> {
+        _scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F> {
         // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
         // partial last block was padded when prepared, as `load` pads.)
         assert!(start.is_multiple_of(BLOCK), "prepared blocks of {BLOCK}");
         let g: &dyn std::any::Any = &self.p.blocks[self.first + start / BLOCK];
-        g.downcast_ref::<Geom<N>>()
+        g.downcast_ref::<Geom<N, M::F>>()
             .expect("prepared blocks are evaluated in blocks of BLOCK")
     }
 
@@ -1131,9 +1220,10 @@ impl MuellerOut for Mueller {
 // The jobs: blocks through the kernel, fallback elements through the one-geometry path; each
 // compiled once per instruction set and run at the kernel's ([`dispatch`]).
 
-/// A piece of work generic over the elementary-function backend.
+/// A piece of work generic over the elementary-function backends: `M` in f64, `S` in f32 (for
+/// the single-precision kernel), both for one instruction set.
 trait Job {
-    fn run<M: Math<F = f64>>(&mut self);
+    fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self);
 }
 
 /// Runs `job` with the code of `level` (the CPU supports it: a kernel is only built at a
@@ -1146,7 +1236,7 @@ fn dispatch<J: Job>(level: SimdLevel, job: &mut J) {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: as above.
         SimdLevel::Avx2 => unsafe { x86::avx2(job) },
-        _ => job.run::<FastPortable>(),
+        _ => job.run::<FastPortable, SinglePortable>(),
     }
 }
 
@@ -1161,7 +1251,7 @@ struct MuellerJob<'k, 'a, 's, 'o, G, O, const N: usize> {
 
 impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, O, N> {
     #[inline(always)]
-    fn run<M: Math<F = f64>>(&mut self) {
+    fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
         let phi_n = k.params.uses_phi_n();
         // Made once per job, overwritten block by block.
@@ -1193,6 +1283,177 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
     }
 }
 
+/// The single-precision job: blocks through the kernel in f32 (backend `S`); the elements it
+/// flags are gathered, [`BLOCK`] at a time, into blocks of the f64 kernel (backend `M`), and
+/// those the f64 kernel flags in turn take the one-geometry path — every element ends where
+/// its accuracy holds, and most of the work stays in f32.
+struct MuellerF32Job<'k, 'a, 's, 'o, S, const N: usize> {
+    kernel: &'k Kernel<'a>,
+    src: &'s Computed<S>,
+    index: IndexSource<'k>,
+    out: &'o mut [[f32; 16]],
+    /// A finite entry beyond f32's range.
+    overflow: bool,
+}
+
+/// What the f64 blocks of [`MuellerF32Job`] work in.
+struct Wide<const N: usize> {
+    scratch: GeomScratch<N>,
+    front: Front<N>,
+    rows: [Lanes<N>; 16],
+    /// Positions of the elements waiting for an f64 block, and how many.
+    pending: [usize; N],
+    len: usize,
+}
+
+/// Positions `pos` of a source, as a source.
+struct Gathered<'a, S> {
+    src: &'a S,
+    pos: &'a [usize],
+}
+
+impl<S: Source> Source for Gathered<'_, S> {
+    #[inline(always)]
+    fn get(&self, i: usize) -> [f64; 4] {
+        self.src.get(self.pos[i])
+    }
+}
+
+impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
+    /// The pending elements through the f64 kernel (and, where it flags them, the one-geometry
+    /// path), rounded to f32 into their places.
+    #[inline(always)]
+    fn flush<M: Math<F = f64>>(&mut self, w: &mut Wide<N>, cache: &mut SpectralCache) {
+        let k = self.kernel;
+        let pos = &w.pending[..w.len];
+        let src = Gathered {
+            src: &self.src.0,
+            pos,
+        };
+        load::<_, N>(&src, 0, pos.len(), &mut w.scratch.input);
+        block::geometry::<M, N, true>(&mut w.scratch, k.params.uses_phi_n());
+        let idx = self
+            .index
+            .lanes_at::<N>(|j| pos[if j < pos.len() { j } else { 0 }], cache);
+        block::front::<M, N>(&k.params, &w.scratch.geo, &idx, &mut w.front);
+        block::mueller::<M, N>(&mut w.front, &w.scratch.geo, &mut w.rows);
+        for (j, &i) in pos.iter().enumerate() {
+            let v = if w.front.fallback[j] {
+                self.src.reference(k, self.index, i).pbrdf.to_row_major()
+            } else {
+                std::array::from_fn(|e| w.rows[e][j])
+            };
+            self.overflow |= <[f32; 16]>::write_block(&mut self.out[i..i + 1], &[v], false);
+        }
+        w.len = 0;
+    }
+}
+
+/// D of the lanes `tail` of the f32 block at `start` recomputed from θN in f64 (backend `M`)
+/// and rounded to f32: far down D's tail its relative error is `2bθN²` times θN's, which f32
+/// cannot hold to 1e-5 beyond `bθN² ≈ 20` (docs/model.md §12, "Precision"), while D itself
+/// only multiplies the other terms, whose f32 accuracy does not degrade there. Only θN is
+/// recomputed (four sine/cosine pairs, the half vector, one arctangent, in groups of 8 lanes);
+/// where even f64 is ill-conditioned, or D is below f32's comfortable range, the element takes
+/// the f64 path (`fallback`).
+#[inline(always)]
+fn refine_d<M: Math<F = f64>, S: Source, const N: usize>(
+    src: &S,
+    start: usize,
+    len: usize,
+    dist: crate::model::distribution::Distribution,
+    d: &mut Lanes<N, f32>,
+    tail: &[bool; N],
+    fallback: &mut [bool; N],
+) {
+    const L: usize = 8;
+    let mut pos = [0usize; N];
+    let mut n = 0;
+    for j in 0..len {
+        if tail[j] && !fallback[j] {
+            pos[n] = j;
+            n += 1;
+        }
+    }
+    for c in (0..n).step_by(L) {
+        let m = L.min(n - c);
+        let a: [[f64; 4]; L] =
+            std::array::from_fn(|l| src.get(start + pos[c + if l < m { l } else { 0 }]));
+        let mut theta_n = [0.0f64; L];
+        for l in 0..L {
+            let [ti, pi, tr, pr] = a[l];
+            // `+ 0.0` as `load`.
+            let t = Trig::<f64>::new::<M>(ti + 0.0, pi, tr + 0.0, pr);
+            theta_n[l] = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
+        }
+        for l in 0..m {
+            let j = pos[c + l];
+            let y = dist.exponent(theta_n[l]);
+            let v = dist.eval_with::<M>(theta_n[l]);
+            if -y > <f64 as Thresholds>::D_EXPONENT_MAX || v < f64::from(<f32 as Thresholds>::TINY)
+            {
+                fallback[j] = true;
+            } else {
+                d[j] = v as f32;
+            }
+        }
+    }
+}
+
+impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
+    #[inline(always)]
+    fn run<M: Math<F = f64>, S1: Math<F = f32>>(&mut self) {
+        let k = self.kernel;
+        let phi_n = k.params.uses_phi_n();
+        // Made once per job, overwritten block by block.
+        let mut scratch = GeomScratch::<N, f32>::zeroed();
+        let mut front = Front::<N, f32>::zeroed();
+        let mut rows = [[0.0f32; N]; 16];
+        let mut staged = [[0.0f32; 16]; N];
+        let mut cache = SpectralCache::new();
+        let mut wide = Wide::<N> {
+            scratch: GeomScratch::zeroed(),
+            front: Front::zeroed(),
+            rows: [[0.0; N]; 16],
+            pending: [0; N],
+            len: 0,
+        };
+        let n = self.out.len();
+        for start in (0..n).step_by(N) {
+            let len = N.min(n - start);
+            let geo = self
+                .src
+                .geometry::<S1, N, true>(start, len, phi_n, &mut scratch);
+            let idx = self.index.lanes_f32::<N>(start, len, k.ill32, &mut cache);
+            block::front_q_d::<S1, N>(&k.params, geo, &idx, &mut front);
+            let (d, tail, fb) = front.d_tail_mut();
+            refine_d::<M, S, N>(&self.src.0, start, len, k.params.distribution, d, tail, fb);
+            block::front_terms::<S1, N>(&k.params, geo, &mut front);
+            block::mueller::<S1, N>(&mut front, geo, &mut rows);
+            let dst = &mut self.out[start..start + len];
+            match <&mut [[f32; 16]; N]>::try_from(&mut *dst) {
+                Ok(whole) => transpose_f32(&rows, whole),
+                Err(_) => {
+                    transpose_f32(&rows, &mut staged);
+                    dst.copy_from_slice(&staged[..len]);
+                }
+            }
+            for j in 0..len {
+                if front.fallback[j] {
+                    wide.pending[wide.len] = start + j;
+                    wide.len += 1;
+                    if wide.len == N {
+                        self.flush::<M>(&mut wide, &mut cache);
+                    }
+                }
+            }
+        }
+        if wide.len > 0 {
+            self.flush::<M>(&mut wide, &mut cache);
+        }
+    }
+}
+
 /// BRDF, DoLP and (with `AOLP`) AoLP; `aolp` is empty without `AOLP`.
 struct BrdfDolpJob<'k, 'a, 's, 'o, G, const N: usize, const AOLP: bool> {
     kernel: &'k Kernel<'a>,
@@ -1205,7 +1466,7 @@ struct BrdfDolpJob<'k, 'a, 's, 'o, G, const N: usize, const AOLP: bool> {
 
 impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_, '_, G, N, AOLP> {
     #[inline(always)]
-    fn run<M: Math<F = f64>>(&mut self) {
+    fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
         let phi_n = k.params.uses_phi_n();
         let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
@@ -1247,7 +1508,7 @@ struct PrepareJob<'s, 'b> {
 
 impl Job for PrepareJob<'_, '_> {
     #[inline(always)]
-    fn run<M: Math<F = f64>>(&mut self) {
+    fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let n = self.src.cols[0].len();
         let mut scratch = GeomScratch::<BLOCK>::zeroed();
         for start in (0..n).step_by(BLOCK) {
@@ -1331,7 +1592,7 @@ struct ElementaryJob<'a> {
 
 impl Job for ElementaryJob<'_> {
     #[inline(always)]
-    fn run<M: Math<F = f64>>(&mut self) {
+    fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let (x, y) = (self.x, self.y);
         let out = &mut *self.out;
         match self.op {
@@ -1371,19 +1632,20 @@ mod x86 {
 
     use super::Job;
     use crate::numeric::math::FastFused;
+    use crate::numeric::math32::Single;
 
     /// # Safety
     /// The CPU must support AVX-512 F/DQ/VL, AVX2 and FMA.
     #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
     pub(super) unsafe fn avx512<J: Job>(job: &mut J) {
-        job.run::<FastFused>()
+        job.run::<FastFused, Single<true>>()
     }
 
     /// # Safety
     /// The CPU must support AVX2 and FMA.
     #[target_feature(enable = "avx2,fma")]
     pub(super) unsafe fn avx2<J: Job>(job: &mut J) {
-        job.run::<FastFused>()
+        job.run::<FastFused, Single<true>>()
     }
 }
 

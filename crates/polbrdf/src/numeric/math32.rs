@@ -11,11 +11,48 @@
 //! f64-computed reference) and checked by the unit tests below against `f64::sin`, `f64::cos`,
 //! `f64::exp` and `f64::atan2`.
 
-// Wired into the f32 kernel by the engine.
-#![allow(dead_code)]
 #![allow(clippy::excessive_precision)]
 
+use super::math::Math;
 use std::f64::consts::FRAC_2_PI;
+
+/// The single-precision backend of the batch engine's f32 kernel (docs/model.md §12,
+/// "Precision"): the functions of this module, with a fused multiply-add when `FMA` (for CPUs
+/// with the instruction) or a separate multiply and add.
+#[derive(Debug, Clone, Copy)]
+pub struct Single<const FMA: bool>;
+
+/// The single-precision backend of the build target's baseline instruction set (fused on
+/// aarch64, separate on x86-64), as [`super::math::FastPortable`].
+pub type SinglePortable = Single<{ cfg!(target_arch = "aarch64") }>;
+
+impl<const FMA: bool> Math for Single<FMA> {
+    type F = f32;
+    const SINCOS_MAX: f64 = SINCOS32_ARG_MAX;
+    #[inline(always)]
+    fn mla(a: f32, b: f32, c: f32) -> f32 {
+        mla32::<FMA>(a, b, c)
+    }
+    #[inline(always)]
+    fn sincos(x: f64) -> (f32, f32) {
+        sincos32::<FMA>(x)
+    }
+    #[inline(always)]
+    fn exp_neg(x: f32) -> f32 {
+        exp_neg32::<FMA>(x)
+    }
+    #[inline(always)]
+    fn atan2_pos(y: f32, x: f32) -> f32 {
+        atan2_pos32::<FMA>(y, x)
+    }
+    #[inline(always)]
+    fn atan2(y: f32, x: f32) -> f32 {
+        atan2_32::<FMA>(y, x)
+    }
+}
+
+/// Largest `|x|` (rad) for which [`sincos32`] is used (as the f64 backends' bound).
+const SINCOS32_ARG_MAX: f64 = 65_536.0;
 
 /// `a·b + c` in f32: one rounding with `FMA`, two without.
 #[inline(always)]
