@@ -49,7 +49,7 @@ pub(crate) trait Thresholds: Real {
     /// an intermediate can overflow that f64 holds).
     const CHECK_FINITE: bool;
     /// Whether D beyond [`Thresholds::D_EXPONENT_MAX`] is refined (recomputed from an f64 θN,
-    /// [`front_with`]'s `refine`) instead of sending the element to the one-geometry path.
+    /// between [`front_q_d`] and [`front_terms`]) instead of sending the element to the f64 path.
     const REFINE_D: bool;
 }
 
