@@ -22,9 +22,13 @@ const HALF_SUBNORMAL: f64 = 7.006_492_321_624_085e-46; // 2⁻¹⁵⁰
 /// deviation relative to F00 (over elements with F00 ≥ 1e-35) and the fraction of elements
 /// whose f32 result is not the f64 one rounded (computed in f32).
 fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> (f64, f64) {
+    check_engine(label, &Engine::new(m), geoms)
+}
+
+/// [`check`] with a given engine (a per-element or spectral index).
+fn check_engine(label: &str, engine: &Engine<'_>, geoms: &[[f64; 4]]) -> (f64, f64) {
     let cols: [Vec<f64>; 4] = std::array::from_fn(|c| geoms.iter().map(|g| g[c]).collect());
     let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
-    let engine = Engine::new(m);
     let mut f64s = vec![[f64::NAN; 16]; batch.len()];
     let mut f32s = vec![[f32::NAN; 16]; batch.len()];
     engine.mueller_into(&batch, &mut f64s).unwrap();
@@ -134,6 +138,58 @@ fn float32_down_the_lobe_tail_refines_d_and_stays_in_f32() {
         100.0 * in_f32
     );
     assert!(in_f32 > 0.9, "{in_f32}");
+}
+
+#[test]
+fn float32_with_a_per_element_and_a_spectral_index() {
+    use polbrdf::engine::IndexColumns;
+    use polbrdf::model::SpectralSource;
+    use polbrdf::optics::dispersion::{Dispersion, SpectralIndex};
+    let mut rng = Rng::new(11);
+    let geoms: Vec<[f64; 4]> = (0..3000).map(|_| random_geometry(&mut rng)).collect();
+    // One index per element: dielectrics, indices near 1 and below, metals.
+    let n: Vec<f64> = (0..geoms.len())
+        .map(|i| [1.5, 1.05, 0.7, 0.2, 2.5][i % 5])
+        .collect();
+    let k: Vec<f64> = (0..geoms.len())
+        .map(|i| [0.0, 0.0, 0.1, 3.0, 8.0][i % 5])
+        .collect();
+    let m = MaterialSpec::new(1.5, 12.0).build().unwrap();
+    let e = Engine::new(&m).with_index(IndexColumns::new(&n, &k).unwrap());
+    let (worst, in_f32) = check_engine("per-element index", &e, &geoms);
+    eprintln!(
+        "per-element index: max |ΔF|/F00 = {worst:e}, {:.1} % in f32",
+        100.0 * in_f32
+    );
+    assert!(in_f32 > 0.3, "{in_f32}");
+    // A tabulated spectral index, one wavelength per element.
+    let wl = vec![0.4, 0.6, 0.8, 1.0];
+    let table = |v: &[f64]| Dispersion::Table {
+        wavelengths: wl.clone(),
+        values: v.to_vec(),
+    };
+    let mut s = MaterialSpec::new(1.0, 12.0);
+    s.spectral = Some(SpectralSource {
+        source: "test".into(),
+        index: std::sync::Arc::new(SpectralIndex {
+            name: "test/dispersive".into(),
+            n: table(&[0.5, 1.4, 2.6, 3.0]),
+            k: Some(table(&[4.0, 2.2, 1.0, 0.6])),
+            references: String::new(),
+            comments: String::new(),
+        }),
+    });
+    let m = s.build_at(0.6).unwrap();
+    let lambda: Vec<f64> = (0..geoms.len())
+        .map(|i| 0.4 + 0.6 * ((i * 7) % 97) as f64 / 96.0)
+        .collect();
+    let e = Engine::new(&m).with_wavelengths(&lambda).unwrap();
+    let (worst, in_f32) = check_engine("spectral index", &e, &geoms);
+    eprintln!(
+        "spectral index: max |ΔF|/F00 = {worst:e}, {:.1} % in f32",
+        100.0 * in_f32
+    );
+    assert!(in_f32 > 0.3, "{in_f32}");
 }
 
 #[test]
