@@ -1367,27 +1367,30 @@ fn refine_d<M: Math<F = f64>, S: Source, const N: usize>(
     fallback: &mut [bool; N],
 ) {
     const L: usize = 8;
+    // Positions in the source of the lanes to refine.
     let mut pos = [0usize; N];
     let mut n = 0;
     for j in 0..len {
         if tail[j] && !fallback[j] {
-            pos[n] = j;
+            pos[n] = start + j;
             n += 1;
         }
     }
+    let mut b = BlockIn::<L>::zeroed();
     for c in (0..n).step_by(L) {
         let m = L.min(n - c);
-        let a: [[f64; 4]; L] =
-            std::array::from_fn(|l| src.get(start + pos[c + if l < m { l } else { 0 }]));
+        let gathered = Gathered {
+            src,
+            pos: &pos[c..c + m],
+        };
+        load::<_, L>(&gathered, 0, m, &mut b);
         let mut theta_n = [0.0f64; L];
         for l in 0..L {
-            let [ti, pi, tr, pr] = a[l];
-            // `+ 0.0` as `load`.
-            let t = Trig::<f64>::new::<M>(ti + 0.0, pi, tr + 0.0, pr);
+            let t = Trig::<f64>::new::<M>(b.ti[l], b.pi[l], b.tr[l], b.pr[l]);
             theta_n[l] = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
         }
         for l in 0..m {
-            let j = pos[c + l];
+            let j = pos[c + l] - start;
             let y = dist.exponent(theta_n[l]);
             let v = dist.eval_with::<M>(theta_n[l]);
             if -y > <f64 as Thresholds>::D_EXPONENT_MAX || v < f64::from(<f32 as Thresholds>::TINY)
