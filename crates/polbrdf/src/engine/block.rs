@@ -104,16 +104,51 @@ pub(crate) struct IndexLanes<const N: usize, T = f64> {
     pub index_ill: [bool; N],
 }
 
-/// Sines and cosines of a block ([`Trig`] in structure-of-arrays form).
+/// Sines and cosines of a block ([`Trig`] in structure-of-arrays form), and what they are
+/// computed from: the backend's reduced arguments ([`Trig::reduce`]) and θi in `T`.
 pub(crate) struct TrigLanes<const N: usize, T = f64> {
     v: [Lanes<N, T>; 8],
+    reduced: [[Lanes<N, T>; 3]; 4],
+    theta_i: Lanes<N, T>,
 }
 
 impl<const N: usize, T: Real> TrigLanes<N, T> {
     pub(crate) fn zeroed() -> Self {
         Self {
             v: [[T::ZERO; N]; 8],
+            reduced: [[[T::ZERO; N]; 3]; 4],
+            theta_i: [T::ZERO; N],
         }
+    }
+
+    #[inline(always)]
+    fn set_reduced(&mut self, j: usize, r: [[T; 3]; 4]) {
+        for a in 0..4 {
+            for c in 0..3 {
+                self.reduced[a][c][j] = r[a][c];
+            }
+        }
+    }
+    /// Lane `j`'s reduced arguments in f64 (`r + r_lo` exact to about 2⁻⁴⁸ relative in f64
+    /// when `T` is f32): what [`Math::sincos_reduced`] of an f64 backend takes.
+    #[inline(always)]
+    pub(crate) fn reduced_f64(&self, j: usize) -> [[f64; 3]; 4] {
+        let r = &self.reduced;
+        let mut out = [[0.0; 3]; 4];
+        for a in 0..4 {
+            out[a] = [
+                r[a][0][j].to_f64() + r[a][1][j].to_f64(),
+                0.0,
+                r[a][2][j].to_f64(),
+            ];
+        }
+        out
+    }
+    #[inline(always)]
+    fn get_reduced(&self, j: usize) -> [[T; 3]; 4] {
+        let r = &self.reduced;
+        let at = |a: usize| [r[a][0][j], r[a][1][j], r[a][2][j]];
+        [at(0), at(1), at(2), at(3)]
     }
 
     #[inline(always)]
@@ -247,16 +282,24 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
     phi_n: bool,
 ) {
     let (b, trig, g) = (&s.input, &mut s.trig, &mut s.geo);
-    // Stage 1: the four sine/cosine pairs.
+    // Stage 1: what needs f64 — validity, the range of `Δ/2`, θi in `M::F` and the backend's
+    // reduction of the four angles — in a loop of its own, so that the f32 kernel's loops
+    // after it are f32 only (at twice the vector width).
     for j in 0..N {
-        trig.set(j, Trig::new::<M>(b.ti[j], b.pi[j], b.tr[j], b.pr[j]));
+        trig.set_reduced(j, Trig::reduce::<M>(b.ti[j], b.pi[j], b.tr[j], b.pr[j]));
+        trig.theta_i[j] = M::F::of(b.ti[j]);
         g.valid[j] = b.ti[j] < FRAC_PI_2 && b.tr[j] < FRAC_PI_2;
         g.out_of_range[j] = !Trig::<M::F>::in_range::<M>(b.pi[j], b.pr[j]);
     }
-    // Stage 2: the angles (θN, β) and cosines; ΦN (eq3 only) in a loop of its own, so that
+    // Stage 2: the four sine/cosine pairs.
+    for j in 0..N {
+        let t = Trig::from_reduced::<M>(trig.get_reduced(j));
+        trig.set(j, t);
+    }
+    // Stage 3: the angles (θN, β) and cosines; ΦN (eq3 only) in a loop of its own, so that
     // materials without it do not pay for its arctangent.
     for j in 0..N {
-        let a = FacetAngles::from_trig::<M>(b.ti[j], &trig.get(j), 1.0, false);
+        let a = FacetAngles::from_trig::<M>(trig.theta_i[j], &trig.get(j), 1.0, false);
         g.facet.set(j, a);
     }
     if phi_n {
@@ -526,8 +569,11 @@ pub(crate) fn mueller<M: Math, const N: usize>(
         let valid = geo.valid[j];
         f.fallback[j] |= valid && v[0] > zero && v[0] < M::F::TINY;
         if M::F::CHECK_FINITE {
-            // x·0 is 0 for every finite x, NaN for ±∞ and NaN.
-            let probe = v.iter().fold(zero, |acc, x| acc + *x * zero);
+            // x·0 is 0 for every finite x, NaN for ±∞ and NaN; the sum (pairwise, to keep the
+            // chain short) is non-finite if an entry is (or, harmlessly, if it overflows).
+            let s8: [M::F; 8] = std::array::from_fn(|i| v[i] + v[i + 8]);
+            let s4: [M::F; 4] = std::array::from_fn(|i| s8[i] + s8[i + 4]);
+            let probe = ((s4[0] + s4[2]) + (s4[1] + s4[3])) * zero;
             f.fallback[j] |= valid && probe != zero;
         }
         for (o, x) in out.iter_mut().zip(v) {

@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::engine::block::{
-    self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds,
+    self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds, TrigLanes,
 };
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
@@ -1349,50 +1349,57 @@ impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
     }
 }
 
-/// D of the lanes `tail` of the f32 block at `start` recomputed from θN in f64 (backend `M`)
-/// and rounded to f32: far down D's tail its relative error is `2bθN²` times θN's, which f32
-/// cannot hold to 1e-5 beyond `bθN² ≈ 20` (docs/model.md §12, "Precision"), while D itself
-/// only multiplies the other terms, whose f32 accuracy does not degrade there. Only θN is
-/// recomputed (four sine/cosine pairs, the half vector, one arctangent, in groups of 8 lanes);
-/// where even f64 is ill-conditioned, or D is below f32's comfortable range, the element takes
-/// the f64 path (`fallback`).
+/// D of the lanes `tail` of an f32 block recomputed from θN in f64 (backend `M`) and rounded
+/// to f32: far down D's tail its relative error is `2bθN²` times θN's, which f32 cannot hold
+/// to 1e-5 beyond `bθN² ≈ 20` (docs/model.md §12, "Precision"), while D itself only
+/// multiplies the other terms, whose f32 accuracy does not degrade there. Only θN is
+/// recomputed: the four sine/cosine pairs in f64 from the block's reduced arguments (`trig`:
+/// the f64 reduction's `r` kept to about 2⁻⁴⁸ as two f32s, so the f64 polynomials need no
+/// reduction of their own), the half vector and one arctangent, 4 lanes at a time; where even
+/// f64 is ill-conditioned, or D is below f32's comfortable range, the element takes the f64
+/// path (`fallback`).
 #[inline(always)]
-fn refine_d<M: Math<F = f64>, S: Source, const N: usize>(
-    src: &S,
-    start: usize,
+fn refine_d<M: Math<F = f64>, const N: usize>(
+    trig: &TrigLanes<N, f32>,
     len: usize,
     dist: crate::model::distribution::Distribution,
     d: &mut Lanes<N, f32>,
     tail: &[bool; N],
     fallback: &mut [bool; N],
 ) {
-    const L: usize = 8;
-    // Positions in the source of the lanes to refine.
-    let mut pos = [0usize; N];
+    const L: usize = 4;
+    let refine = |j: usize| tail[j] & !fallback[j];
+    // Most blocks have no lane to refine: one vectorized test first.
+    if !(0..len).fold(false, |any, j| any | refine(j)) {
+        return;
+    }
+    // The lanes to refine, compacted without a branch (the lanes are random, and a
+    // mispredicted branch per lane cost more than the test), padded with the last one.
+    let mut lanes = [0usize; N];
     let mut n = 0;
     for j in 0..len {
-        if tail[j] && !fallback[j] {
-            pos[n] = start + j;
-            n += 1;
-        }
+        lanes[n.min(N - 1)] = j;
+        n += usize::from(refine(j));
     }
-    let mut b = BlockIn::<L>::zeroed();
+    // (Plain loops: a closure would not inherit the kernel's target features.)
     for c in (0..n).step_by(L) {
-        let m = L.min(n - c);
-        let gathered = Gathered {
-            src,
-            pos: &pos[c..c + m],
-        };
-        load::<_, L>(&gathered, 0, m, &mut b);
+        let mut group = [0usize; L];
+        for l in 0..L {
+            group[l] = lanes[(c + l).min(n - 1)];
+        }
+        // Gathered first, so that the loop below is over contiguous lanes and vectorizes.
+        let mut reduced = [[[0.0f64; 3]; 4]; L];
+        for l in 0..L {
+            reduced[l] = trig.reduced_f64(group[l]);
+        }
         let mut theta_n = [0.0f64; L];
         for l in 0..L {
-            let t = Trig::<f64>::new::<M>(b.ti[l], b.pi[l], b.tr[l], b.pr[l]);
+            let t = Trig::<f64>::from_reduced::<M>(reduced[l]);
             theta_n[l] = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
         }
-        for l in 0..m {
-            let j = pos[c + l] - start;
-            let y = dist.exponent(theta_n[l]);
-            let v = dist.eval_with::<M>(theta_n[l]);
+        for (&j, tn) in group.iter().zip(theta_n).take(n - c) {
+            let y = dist.exponent(tn);
+            let v = dist.eval_with::<M>(tn);
             if -y > <f64 as Thresholds>::D_EXPONENT_MAX || v < f64::from(<f32 as Thresholds>::TINY)
             {
                 fallback[j] = true;
@@ -1424,13 +1431,13 @@ impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
         let n = self.out.len();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
-            let geo = self
-                .src
+            self.src
                 .geometry::<S1, N, true>(start, len, phi_n, &mut scratch);
+            let geo = &scratch.geo;
             let idx = self.index.lanes_f32::<N>(start, len, k.ill32, &mut cache);
             block::front_q_d::<S1, N>(&k.params, geo, &idx, &mut front);
             let (d, tail, fb) = front.d_tail_mut();
-            refine_d::<M, S, N>(&self.src.0, start, len, k.params.distribution, d, tail, fb);
+            refine_d::<M, N>(&scratch.trig, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
             let dst = &mut self.out[start..start + len];

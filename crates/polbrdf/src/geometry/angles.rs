@@ -58,6 +58,47 @@ impl<T: Real> Trig<T> {
         }
     }
 
+    /// The arguments of [`Trig::new`] reduced by backend `M` ([`Math::reduce`]), in the order
+    /// θi, θr, `Δ/2`, `u`, with the same out-of-range replacement of `Δ/2`:
+    /// `Trig::from_reduced::<M>(Trig::reduce::<M>(..)) == Trig::new::<M>(..)`.
+    #[inline(always)]
+    pub fn reduce<M: Math<F = T>>(
+        theta_i: f64,
+        phi_i: f64,
+        theta_r: f64,
+        phi_r: f64,
+    ) -> [[T; 3]; 4] {
+        let h = 0.5 * (phi_r - phi_i);
+        let h = if h.abs() <= M::SINCOS_MAX { h } else { 0.0 };
+        [
+            M::reduce(theta_i),
+            M::reduce(theta_r),
+            M::reduce(h),
+            // |u| < π/4 where both directions are above the horizon; elsewhere the element is
+            // invalid (a zero result) and the value unused.
+            M::reduce_small(0.5 * (theta_i - theta_r)),
+        ]
+    }
+
+    /// The sines and cosines from [`Trig::reduce`]'s arguments.
+    #[inline(always)]
+    pub fn from_reduced<M: Math<F = T>>([ri, rr, rh, ru]: [[T; 3]; 4]) -> Self {
+        let (si, ci) = M::sincos_reduced(ri);
+        let (sr, cr) = M::sincos_reduced(rr);
+        let (sh, ch) = M::sincos_reduced(rh);
+        let (su, cu) = M::sincos_reduced(ru);
+        Self {
+            si,
+            ci,
+            sr,
+            cr,
+            sh,
+            ch,
+            su,
+            cu,
+        }
+    }
+
     /// Whether backend `M` computes `sin(Δ/2)` of these azimuths to full accuracy.
     #[inline(always)]
     pub fn in_range<M: Math<F = T>>(phi_i: f64, phi_r: f64) -> bool {
@@ -218,7 +259,7 @@ impl<T: Real> FacetAngles<T> {
     /// is the only term that uses it).
     #[inline(always)]
     pub fn from_trig<M: Math<F = T>>(
-        theta_i: f64,
+        theta_i: T,
         t: &Trig<T>,
         phi_scale: f64,
         with_phi_n: bool,
@@ -227,7 +268,7 @@ impl<T: Real> FacetAngles<T> {
         let sin2_beta = sin2_beta::<M>(t);
         let (beta, cos_beta) = beta::<M>(&h, sin2_beta);
         Self {
-            theta_i: T::of(theta_i),
+            theta_i,
             cos_i: t.ci,
             cos_r: t.cr,
             theta_n: theta_n::<M>(&h),

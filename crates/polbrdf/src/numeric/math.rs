@@ -125,6 +125,17 @@ pub trait Math {
     /// `(sin x, cos x)` of an angle given in f64 (a single-precision backend reduces it by π/2
     /// in f64 first, so that `cos θ` keeps its relative accuracy as θ → π/2).
     fn sincos(x: f64) -> (Self::F, Self::F);
+    /// The first step of [`Math::sincos`], `sincos(x) == sincos_reduced(reduce(x))` bit for
+    /// bit: the reduction by π/2, `[r, r_lo, k]` with `x = k·π/2 + r + r_lo` (`r_lo` 0 in f64;
+    /// [`Std`] does not reduce: `[x, 0, 0]`). It is what needs f64 in a single-precision
+    /// backend, so the batch kernel runs the two steps in separate loops, each at its own vector
+    /// width (one f64 operation in a loop of f32 ones halves the width of the whole loop).
+    fn reduce(x: f64) -> [Self::F; 3];
+    /// [`Math::reduce`] of an `|x| ≤ π/4`, where there is nothing to reduce (`k = 0`): the
+    /// same result for less work.
+    fn reduce_small(x: f64) -> [Self::F; 3];
+    /// The second step of [`Math::sincos`], from [`Math::reduce`]'s result.
+    fn sincos_reduced(r: [Self::F; 3]) -> (Self::F, Self::F);
     /// `exp x` for `x ≤ 0` (0 below the underflow limit).
     fn exp_neg(x: Self::F) -> Self::F;
     /// `atan2(y, x)` for `y ≥ 0`, `x ≥ 0` (0 when both are 0).
@@ -147,6 +158,18 @@ impl Math for Std {
     #[inline(always)]
     fn sincos(x: f64) -> (f64, f64) {
         x.sin_cos()
+    }
+    #[inline(always)]
+    fn reduce(x: f64) -> [f64; 3] {
+        [x, 0.0, 0.0]
+    }
+    #[inline(always)]
+    fn reduce_small(x: f64) -> [f64; 3] {
+        [x, 0.0, 0.0]
+    }
+    #[inline(always)]
+    fn sincos_reduced(r: [f64; 3]) -> (f64, f64) {
+        r[0].sin_cos()
     }
     #[inline(always)]
     fn exp_neg(x: f64) -> f64 {
@@ -212,6 +235,18 @@ macro_rules! fast_math {
                 sincos::<$t>(x)
             }
             #[inline(always)]
+            fn reduce(x: f64) -> [f64; 3] {
+                reduce::<$t>(x)
+            }
+            #[inline(always)]
+            fn reduce_small(x: f64) -> [f64; 3] {
+                [x, 0.0, 0.0]
+            }
+            #[inline(always)]
+            fn sincos_reduced(r: [f64; 3]) -> (f64, f64) {
+                sincos_reduced::<$t>(r)
+            }
+            #[inline(always)]
             fn exp_neg(x: f64) -> f64 {
                 exp_neg::<$t>(x)
             }
@@ -264,12 +299,24 @@ const SINCOS_ARG_MAX: f64 = 65_536.0;
 /// about 1 ulp.
 #[inline(always)]
 fn sincos<M: Mla>(x: f64) -> (f64, f64) {
+    sincos_reduced::<M>(reduce::<M>(x))
+}
+
+/// The reduction of [`sincos`]: `[r, 0, k]` with `x = k·π/2 + r`, `|r| ≤ π/4` (`k` an integer).
+#[inline(always)]
+fn reduce<M: Mla>(x: f64) -> [f64; 3] {
     let t = M::mla(x, FRAC_2_PI, MAGIC);
     let k = t - MAGIC;
-    let q = t.to_bits();
     let r = x - k * PIO2_1; // exact
     let r = r - k * PIO2_2;
-    let r = r - k * PIO2_2T;
+    [r - k * PIO2_2T, 0.0, k]
+}
+
+/// The polynomials and the quadrant of [`sincos`], from [`reduce`]'s `[r, _, k]`.
+#[inline(always)]
+fn sincos_reduced<M: Mla>([r, _, k]: [f64; 3]) -> (f64, f64) {
+    // `k + MAGIC` holds k in its low bits (as in `reduce`, where it is the same sum).
+    let q = (k + MAGIC).to_bits();
     let z = r * r;
     let z2 = z * z;
     // sin r = r + r³(S1 + z·P(z)), P(z) = S2 + … + S6 z⁴ by Estrin's scheme
@@ -488,6 +535,46 @@ mod tests {
             }
         }
         assert_eq!(sincos::<FastFused>(0.0), (0.0, 1.0));
+    }
+
+    /// `sincos` in the batch kernel's two steps is `sincos` bit for bit, for every backend, and
+    /// `reduce_small` is `reduce` where it applies (`|x| ≤ π/4`).
+    #[test]
+    fn reduce_then_sincos_reduced_is_sincos() {
+        fn check<M: Math>() {
+            let bits = |(s, c): (M::F, M::F)| (s.to_f64().to_bits(), c.to_f64().to_bits());
+            let small = std::f64::consts::FRAC_PI_4;
+            for x in grid(-M::SINCOS_MAX.min(1e4), M::SINCOS_MAX.min(1e4), 200_001)
+                .chain(grid(-small, small, 20_001))
+                .chain([
+                    0.0,
+                    -0.0,
+                    small,
+                    -small,
+                    1e-30,
+                    FRAC_PI_2,
+                    FRAC_PI_2.next_down(),
+                ])
+            {
+                assert_eq!(
+                    bits(M::sincos_reduced(M::reduce(x))),
+                    bits(M::sincos(x)),
+                    "{x}"
+                );
+                if x.abs() <= small {
+                    assert_eq!(
+                        bits(M::sincos_reduced(M::reduce_small(x))),
+                        bits(M::sincos(x)),
+                        "small {x}"
+                    );
+                }
+            }
+        }
+        check::<Std>();
+        check::<FastFused>();
+        check::<FastUnfused>();
+        check::<crate::numeric::math32::Single<true>>();
+        check::<crate::numeric::math32::Single<false>>();
     }
 
     #[test]

@@ -38,6 +38,19 @@ impl<const FMA: bool> Math for Single<FMA> {
         sincos32::<FMA>(x)
     }
     #[inline(always)]
+    fn reduce(x: f64) -> [f32; 3] {
+        reduce32(x)
+    }
+    #[inline(always)]
+    fn reduce_small(x: f64) -> [f32; 3] {
+        let rf = x as f32;
+        [rf, (x - rf as f64) as f32, 0.0]
+    }
+    #[inline(always)]
+    fn sincos_reduced(r: [f32; 3]) -> (f32, f32) {
+        sincos32_reduced::<FMA>(r)
+    }
+    #[inline(always)]
     fn exp_neg(x: f32) -> f32 {
         exp_neg32::<FMA>(x)
     }
@@ -85,7 +98,8 @@ const CF1: f32 = 4.166_664_568_298_827e-2;
 const CF2: f32 = -1.388_731_625_493_765e-3;
 const CF3: f32 = 2.443_315_711_809_948e-5;
 
-/// `(sin x, cos x)` in f32 for an f64 argument, `|x| ≤ 65536` (rad).
+/// `(sin x, cos x)` in f32 for an f64 argument, `|x| ≤ 65536` (rad): [`reduce32`], then
+/// [`sincos32_reduced`].
 ///
 /// The reduction is done in f64 (as [`super::math`]'s `sincos`): `k = round(x·2/π)` by the
 /// `MAGIC` trick, `r = x − k·π/2` with π/2 in three parts (fdlibm's `__rem_pio2` constants;
@@ -101,14 +115,27 @@ const CF3: f32 = 2.443_315_711_809_948e-5;
 /// `sincos32(0.0) == (0.0, 1.0)`.
 #[inline(always)]
 pub(crate) fn sincos32<const FMA: bool>(x: f64) -> (f32, f32) {
+    sincos32_reduced::<FMA>(reduce32(x))
+}
+
+/// The f64 part of [`sincos32`]: `[r_f32, r_lo, k]` with `x = k·π/2 + r_f32 + r_lo` (`k` an
+/// integer, exact in f32 for `|x| ≤ 65536`).
+#[inline(always)]
+pub(crate) fn reduce32(x: f64) -> [f32; 3] {
     let t = x * FRAC_2_PI + MAGIC;
     let k = t - MAGIC;
-    let q = t.to_bits() as u32;
     let r = x - k * PIO2_1; // exact
     let r = r - k * PIO2_2;
     let r = r - k * PIO2_2T;
     let rf = r as f32;
-    let rlo = (r - rf as f64) as f32;
+    [rf, (r - rf as f64) as f32, k as f32]
+}
+
+/// The f32 part of [`sincos32`], from [`reduce32`]'s `[r_f32, r_lo, k]`.
+#[inline(always)]
+pub(crate) fn sincos32_reduced<const FMA: bool>([rf, rlo, k]: [f32; 3]) -> (f32, f32) {
+    // `k + MAGIC32` holds k in its low bits (offset binary with an offset divisible by 4).
+    let q = (k + MAGIC32).to_bits();
     let z = rf * rf;
     // sin r = r + r·z·(SF1 + z·(SF2 + z·SF3))
     let ps = mla32::<FMA>(mla32::<FMA>(SF3, z, SF2), z, SF1);
