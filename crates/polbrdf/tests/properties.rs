@@ -491,6 +491,57 @@ fn large_batch_across_chunks_equals_per_element() {
     assert_eq!(out, mueller(&m, &batch).unwrap());
 }
 
+/// The batch's validation (a vectorized test of each chunk, element by element only where it
+/// fails) accepts and rejects exactly what `Geometry::new` does, at the edges of every range,
+/// and reports the element (also far into a batch, beyond the first chunk).
+#[test]
+fn batch_validation_is_geometry_new_at_the_edges() {
+    let max_az = polbrdf::MAX_AZIMUTH_DEG.to_radians();
+    let zeniths = [
+        0.0,
+        -0.0,
+        1e-300,
+        PI,
+        PI.next_up(),
+        -1e-300,
+        f64::NAN,
+        f64::INFINITY,
+    ];
+    let azimuths = [
+        0.0,
+        -max_az,
+        max_az,
+        max_az.next_up(),
+        -max_az.next_up(),
+        f64::NAN,
+        -f64::INFINITY,
+    ];
+    let n = 10_000;
+    for (slot, values) in [
+        (0, &zeniths[..]),
+        (1, &azimuths[..]),
+        (2, &zeniths[..]),
+        (3, &azimuths[..]),
+    ] {
+        for &v in values {
+            let mut cols = [vec![0.3; n], vec![0.2; n], vec![0.4; n], vec![1.0; n]];
+            let at = n - 3;
+            cols[slot][at] = v;
+            let mut g = [0.3, 0.2, 0.4, 1.0];
+            g[slot] = v;
+            let single = Geometry::new(g[0], g[1], g[2], g[3]);
+            let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]);
+            assert_eq!(batch.is_ok(), single.is_ok(), "slot {slot}, value {v}");
+            if let Err(e) = batch {
+                assert!(
+                    matches!(e, Error::InvalidAngle { index: Some(i), .. } if i == at),
+                    "slot {slot}, value {v}: {e}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn batch_errors_name_the_element_and_the_slice() {
     let ok = [0.1, 0.2, 0.3];

@@ -273,13 +273,37 @@ impl<const N: usize, T: Real> GeomScratch<N, T> {
     }
 }
 
+/// Which of the angles that only some terms use a material needs: ΦN (only SO's eq. 3
+/// azimuth factor) and β (only SO). The geometry stages skip the others (0 in their place).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AngleNeeds {
+    pub phi_n: bool,
+    pub beta: bool,
+}
+
+impl AngleNeeds {
+    /// Every angle (a prepared batch serves every material).
+    pub(crate) const ALL: Self = Self {
+        phi_n: true,
+        beta: true,
+    };
+
+    /// What the terms of `params` use.
+    pub(crate) fn of(params: &ModelParams) -> Self {
+        Self {
+            phi_n: params.uses_phi_n(),
+            beta: params.shadowing.is_some(),
+        }
+    }
+}
+
 /// The geometry stages of the block `s.input` into `s.geo`: sines and cosines, the angles
-/// (ΦN when `phi_n`) and, with `PAIRS`, the Priest–Meier pairs. `s.geo.angles` is left as it
-/// is (only a prepared batch keeps the angles).
+/// (ΦN and β where `needs` says) and, with `PAIRS`, the Priest–Meier pairs. `s.geo.angles` is
+/// left as it is (only a prepared batch keeps the angles).
 #[inline(always)]
 pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
     s: &mut GeomScratch<N, M::F>,
-    phi_n: bool,
+    needs: AngleNeeds,
 ) {
     let (b, trig, g) = (&s.input, &mut s.trig, &mut s.geo);
     // Stage 1: what needs f64 — validity, the range of `Δ/2`, θi in `M::F` and the backend's
@@ -296,13 +320,20 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
         let t = Trig::from_reduced::<M>(trig.get_reduced(j));
         trig.set(j, t);
     }
-    // Stage 3: the angles (θN, β) and cosines; ΦN (eq3 only) in a loop of its own, so that
-    // materials without it do not pay for its arctangent.
-    for j in 0..N {
-        let a = FacetAngles::from_trig::<M>(trig.theta_i[j], &trig.get(j), 1.0, false);
-        g.facet.set(j, a);
+    // Stage 3: the angles (θN, β) and cosines, β only where SO needs it; ΦN (eq3 only) in a
+    // loop of its own. Materials without them do not pay for their arctangents.
+    if needs.beta {
+        for j in 0..N {
+            let a = FacetAngles::from_trig::<M>(trig.theta_i[j], &trig.get(j), 1.0, false, true);
+            g.facet.set(j, a);
+        }
+    } else {
+        for j in 0..N {
+            let a = FacetAngles::from_trig::<M>(trig.theta_i[j], &trig.get(j), 1.0, false, false);
+            g.facet.set(j, a);
+        }
     }
-    if phi_n {
+    if needs.phi_n {
         for j in 0..N {
             let t = trig.get(j);
             let scale = angles::phi_scale(b.pi[j], b.pr[j]);

@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::engine::block::{
-    self, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds, TrigLanes,
+    self, AngleNeeds, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds, TrigLanes,
 };
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
@@ -770,13 +770,14 @@ fn load<S: Source, const N: usize>(src: &S, start: usize, len: usize, b: &mut Bl
 
 /// Where the geometry part of each block comes from, and the one-geometry path of an element.
 trait Blocks {
-    /// The geometry part of elements `start .. start + len` (len ≤ N), ΦN when `phi_n`:
+    /// The geometry part of elements `start .. start + len` (len ≤ N), the optional angles
+    /// where `needs` says:
     /// computed in `scratch` (and returned from there) or taken from where it was prepared.
     fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
         &'s self,
         start: usize,
         len: usize,
-        phi_n: bool,
+        needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
     ) -> &'s Geom<N, M::F>;
 
@@ -793,11 +794,11 @@ impl<S: Source> Blocks for Computed<S> {
         &'s self,
         start: usize,
         len: usize,
-        phi_n: bool,
+        needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
     ) -> &'s Geom<N, M::F> {
         load::<S, N>(&self.0, start, len, &mut scratch.input);
-        block::geometry::<M, N, PAIRS>(scratch, phi_n);
+        block::geometry::<M, N, PAIRS>(scratch, needs);
         &scratch.geo
     }
 
@@ -821,7 +822,7 @@ impl Blocks for Variables<'_> {
         &'s self,
         start: usize,
         len: usize,
-        _phi_n: bool,
+        _needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
     ) -> &'s Geom<N, M::F> {
         let v: [AngleVariables; N] =
@@ -928,7 +929,7 @@ impl Blocks for PreparedRange<'_> {
         &'s self,
         start: usize,
         _len: usize,
-        _phi_n: bool,
+        _needs: AngleNeeds,
         _scratch: &'s mut GeomScratch<N, M::F>,
     ) -> &'s Geom<N, M::F> {
         // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
@@ -1253,7 +1254,7 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
     #[inline(always)]
     fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
-        let phi_n = k.params.uses_phi_n();
+        let needs = AngleNeeds::of(&k.params);
         // Made once per job, overwritten block by block.
         let mut scratch = GeomScratch::<N>::zeroed();
         let mut front = Front::<N>::zeroed();
@@ -1264,7 +1265,7 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
             let start = blk * N;
             let geo = self
                 .src
-                .geometry::<M, N, true>(start, dst.len(), phi_n, &mut scratch);
+                .geometry::<M, N, true>(start, dst.len(), needs, &mut scratch);
             let idx = self.index.lanes::<N>(start, dst.len(), &mut cache);
             block::front::<M, N>(&k.params, geo, &idx, &mut front);
             block::mueller::<M, N>(&mut front, geo, &mut rows);
@@ -1331,7 +1332,7 @@ impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
             pos,
         };
         load::<_, N>(&src, 0, pos.len(), &mut w.scratch.input);
-        block::geometry::<M, N, true>(&mut w.scratch, k.params.uses_phi_n());
+        block::geometry::<M, N, true>(&mut w.scratch, AngleNeeds::of(&k.params));
         let idx = self
             .index
             .lanes_at::<N>(|j| pos[if j < pos.len() { j } else { 0 }], cache);
@@ -1414,7 +1415,7 @@ impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S1: Math<F = f32>>(&mut self) {
         let k = self.kernel;
-        let phi_n = k.params.uses_phi_n();
+        let needs = AngleNeeds::of(&k.params);
         // Made once per job, overwritten block by block.
         let mut scratch = GeomScratch::<N, f32>::zeroed();
         let mut front = Front::<N, f32>::zeroed();
@@ -1432,7 +1433,7 @@ impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
             self.src
-                .geometry::<S1, N, true>(start, len, phi_n, &mut scratch);
+                .geometry::<S1, N, true>(start, len, needs, &mut scratch);
             let geo = &scratch.geo;
             let idx = self.index.lanes_f32::<N>(start, len, k.ill32, &mut cache);
             block::front_q_d::<S1, N>(&k.params, geo, &idx, &mut front);
@@ -1478,7 +1479,7 @@ impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_
     #[inline(always)]
     fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
-        let phi_n = k.params.uses_phi_n();
+        let needs = AngleNeeds::of(&k.params);
         let mut lanes: [Lanes<N>; 3] = [[0.0; N]; 3];
         let n = self.brdf.len();
         let mut cache = SpectralCache::new();
@@ -1488,7 +1489,7 @@ impl<G: Blocks, const N: usize, const AOLP: bool> Job for BrdfDolpJob<'_, '_, '_
             let len = N.min(n - start);
             let geo = self
                 .src
-                .geometry::<M, N, AOLP>(start, len, phi_n, &mut scratch);
+                .geometry::<M, N, AOLP>(start, len, needs, &mut scratch);
             let idx = self.index.lanes::<N>(start, len, &mut cache);
             block::front::<M, N>(&k.params, geo, &idx, &mut front);
             block::brdf_dolp::<M, N, AOLP>(&mut front, geo, &mut lanes);
@@ -1524,8 +1525,8 @@ impl Job for PrepareJob<'_, '_> {
         for start in (0..n).step_by(BLOCK) {
             let len = BLOCK.min(n - start);
             load::<_, BLOCK>(self.src, start, len, &mut scratch.input);
-            // ΦN always: the prepared geometry serves every material, eq3 ones too.
-            block::geometry::<M, BLOCK, true>(&mut scratch, true);
+            // Every angle: the prepared geometry serves every material.
+            block::geometry::<M, BLOCK, true>(&mut scratch, AngleNeeds::ALL);
             let b = &scratch.input;
             scratch.geo.angles = [b.ti, b.pi, b.tr, b.pr];
             self.out.push(scratch.geo.clone(), len);
@@ -1683,7 +1684,7 @@ mod tests {
                 let idx = k.index.lanes::<BLOCK>(0, BLOCK, &mut SpectralCache::new());
                 let mut s = GeomScratch::<BLOCK>::zeroed();
                 s.input = b;
-                block::geometry::<FastUnfused, BLOCK, true>(&mut s, false);
+                block::geometry::<FastUnfused, BLOCK, true>(&mut s, AngleNeeds::of(&k.params));
                 let mut rows = [[0.0; BLOCK]; 16];
                 let mut f = Front::<BLOCK>::zeroed();
                 block::front::<FastUnfused, BLOCK>(&k.params, &s.geo, &idx, &mut f);

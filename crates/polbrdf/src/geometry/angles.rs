@@ -152,10 +152,16 @@ pub fn theta_n<M: Math>(h: &HalfVector<M::F>) -> M::F {
     M::atan2_pos(h.rho, h.sz)
 }
 
-/// `cosβ = |s|/2` and `β = atan2(sinβ, cosβ)` (eqs. 1, 3, 11).
+/// `cosβ = |s|/2` (eq. 11).
+#[inline(always)]
+pub fn cos_beta<M: Math>(h: &HalfVector<M::F>) -> M::F {
+    M::F::of(0.5) * h.s2.sqrt()
+}
+
+/// `β = atan2(sinβ, cosβ)` and [`cos_beta`] (eqs. 1, 3, 11).
 #[inline(always)]
 pub fn beta<M: Math>(h: &HalfVector<M::F>, sin2_beta: M::F) -> (M::F, M::F) {
-    let cos_beta = M::F::of(0.5) * h.s2.sqrt();
+    let cos_beta = cos_beta::<M>(h);
     (M::atan2_pos(sin2_beta.sqrt(), cos_beta), cos_beta)
 }
 
@@ -256,17 +262,23 @@ pub struct FacetAngles<T = f64> {
 
 impl<T: Real> FacetAngles<T> {
     /// From a geometry's sines and cosines; ΦN only when `with_phi_n` (the eq. 3 azimuth factor
-    /// is the only term that uses it).
+    /// is the only term that uses it), β only when `with_beta` (only SO uses it; cos β and
+    /// sin²β, which the Fresnel amplitudes use, always). An angle not computed is 0.
     #[inline(always)]
     pub fn from_trig<M: Math<F = T>>(
         theta_i: T,
         t: &Trig<T>,
         phi_scale: f64,
         with_phi_n: bool,
+        with_beta: bool,
     ) -> Self {
         let h = half_vector::<M>(t);
         let sin2_beta = sin2_beta::<M>(t);
-        let (beta, cos_beta) = beta::<M>(&h, sin2_beta);
+        let (beta, cos_beta) = if with_beta {
+            beta::<M>(&h, sin2_beta)
+        } else {
+            (T::ZERO, cos_beta::<M>(&h))
+        };
         Self {
             theta_i,
             cos_i: t.ci,
@@ -351,7 +363,7 @@ impl AngleVariables {
     /// the closed forms of this module with the standard library's functions.
     pub fn of(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
         let t = Trig::new::<Std>(theta_i, phi_i, theta_r, phi_r);
-        let a = FacetAngles::from_trig::<Std>(theta_i, &t, phi_scale(phi_i, phi_r), true);
+        let a = FacetAngles::from_trig::<Std>(theta_i, &t, phi_scale(phi_i, phi_r), true, true);
         let [c_i, s_i, c_r, s_r] = eta_pairs::<Std>(&t);
         Self {
             theta_i,

@@ -39,15 +39,42 @@ impl<'a> GeometryBatch<'a> {
             theta_r,
             phi_r,
         };
-        // Validate in parallel; report the first bad element.
+        // Validate in parallel: a vectorized test of each chunk, and only in a chunk that
+        // fails it the element-by-element check that finds and reports the first bad element.
         batch
             .theta_i
             .par_chunks(CHUNK)
             .enumerate()
             .try_for_each(|(c, chunk)| {
-                (0..chunk.len()).try_for_each(|j| batch.geometry_checked(c * CHUNK + j).map(|_| ()))
+                let r = c * CHUNK..c * CHUNK + chunk.len();
+                if batch.all_valid(r.clone()) {
+                    return Ok(());
+                }
+                r.into_iter()
+                    .try_for_each(|i| batch.geometry_checked(i).map(|_| ()))
             })?;
         Ok(batch)
+    }
+
+    /// Whether every element of `range` passes [`Geometry::checked`]: zenith angles in
+    /// `[0, π]`, azimuths within ±[`crate::MAX_AZIMUTH_DEG`] (in radians), all finite (a NaN or
+    /// an infinity fails a comparison). Branch-free, so that it vectorizes.
+    fn all_valid(&self, range: std::ops::Range<usize>) -> bool {
+        let max_azimuth = crate::MAX_AZIMUTH_DEG.to_radians();
+        let pi = std::f64::consts::PI;
+        let zenith = |x: f64| (x >= 0.0) & (x <= pi);
+        let azimuth = |x: f64| x.abs() <= max_azimuth;
+        let ti = &self.theta_i[range.clone()];
+        let pi_ = &self.phi_i[range.clone()];
+        let tr = &self.theta_r[range.clone()];
+        let pr = &self.phi_r[range];
+        ti.iter()
+            .zip(pi_)
+            .zip(tr)
+            .zip(pr)
+            .fold(true, |ok, (((&ti, &pi), &tr), &pr)| {
+                ok & zenith(ti) & azimuth(pi) & zenith(tr) & azimuth(pr)
+            })
     }
 
     /// Number of geometries.

@@ -256,7 +256,7 @@ impl Material {
         }
         let (ti, pi, tr, pr) = (g.theta_i(), g.phi_i(), g.theta_r(), g.phi_r());
         let t = Trig::new::<Std>(ti, pi, tr, pr);
-        let a = FacetAngles::from_trig::<Std>(ti, &t, angles::phi_scale(pi, pr), true);
+        let a = FacetAngles::from_trig::<Std>(ti, &t, angles::phi_scale(pi, pr), true, true);
         let pairs = angles::eta_pairs::<Std>(&t);
         let [c_i, s_i, c_r, s_r] = pairs;
         let vars = AngleVariables {
