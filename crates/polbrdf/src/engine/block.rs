@@ -38,10 +38,6 @@ pub(crate) trait Thresholds: Real {
     /// Results below this (but not zero) are near the subnormal range, where relative accuracy
     /// ends.
     const TINY: Self;
-    /// Below `s_z = cosθi + cosθr = 2 cos v cos u` of this (both directions near grazing),
-    /// `cos v = cosθr cos u − sinθr sin u` ([`angles::half_vector`]) has cancelled too far.
-    /// 0 in f64, where it never shows at 1e-12.
-    const SZ_MIN: Self;
     /// The largest condition number of the Fresnel amplitudes as `N² → 1` the kernel accepts
     /// (`crate::engine::kernel`'s `index_ill`).
     const INDEX_COND_MAX: f64;
@@ -57,21 +53,19 @@ impl Thresholds for f64 {
     const D_EXPONENT_MAX: f64 = 600.0;
     const BRANCH_POINT_MIN: f64 = 1e-4;
     const TINY: f64 = 1e-280;
-    const SZ_MIN: f64 = 0.0;
     const INDEX_COND_MAX: f64 = 100.0;
     const CHECK_FINITE: bool = false;
     const REFINE_D: bool = false;
 }
 
 /// The f32 kernel's bounds for an accuracy of 1e-5·F00 against f64 (docs/model.md §12,
-/// "Precision"): D's relative error is about `2bθN²·δθN/θN` with `δθN/θN` a few f32 ulps, so
-/// `bθN² ≤ 20`; `cos v` loses `1/cos v` ulps; the Fresnel amplitudes' condition number times
-/// f32's ε stays near 1e-6 at 20.
+/// "Precision"): D's relative error is about `2bθN²·δθN/θN` with `δθN/θN` up to about 2 f32
+/// ulps (measured), so `bθN² ≤ 20`; the Fresnel amplitudes' condition number times f32's ε
+/// stays near 1e-6 at 20.
 impl Thresholds for f32 {
     const D_EXPONENT_MAX: f32 = 20.0;
     const BRANCH_POINT_MIN: f32 = 0.03;
     const TINY: f32 = 1e-30;
-    const SZ_MIN: f32 = 0.1;
     const INDEX_COND_MAX: f64 = 20.0;
     const CHECK_FINITE: bool = true;
     const REFINE_D: bool = true;
@@ -468,14 +462,12 @@ pub(crate) fn front_q_d<M: Math, const N: usize>(
     for j in 0..N {
         let tn = geo.facet.v[3][j];
         d[j] = dist.eval_with::<M>(tn);
-        // D so far down its tail that θN's last bit shows, or near the underflow limit; both
-        // directions so near grazing that cos v has cancelled.
+        // D so far down its tail that θN's last bit shows, or near the underflow limit.
         let y = dist.exponent(tn);
         let lobe = dist.a() > 0.0 && y > M::F::of(-750.0);
         let tail = lobe && -y > M::F::D_EXPONENT_MAX;
         f.fallback[j] |= lobe && (d[j] < M::F::TINY || (tail && !M::F::REFINE_D));
         f.d_tail[j] = tail && M::F::REFINE_D;
-        f.fallback[j] |= geo.facet.v[8][j] < M::F::SZ_MIN;
     }
 }
 

@@ -7,7 +7,8 @@
 //! `Δ = φr − φi`, and `u = (θi − θr)/2` — by algebra arranged without cancellation:
 //! `sin(θi − θr) = 2 sin u cos u`, `1 − cosΔ = 2 sin²(Δ/2)`, `sinΔ = 2 sin(Δ/2) cos(Δ/2)`, and for
 //! the half vector `s = w_i + w_r` (docs/model.md §9.2)
-//! `|s_xy|² = 4(cos²v sin²u + sinθi sinθr cos²(Δ/2))` with `cos v = cos((θi + θr)/2) = cos(θr + u)`,
+//! `|s_xy|² = 4(cos²v sin²u + sinθi sinθr cos²(Δ/2))` with `cos v = cos((θi + θr)/2) =
+//! (cosθi + cosθr)/(2 cos u)`,
 //! `s_z = cosθi + cosθr`, `cosβ = |s|/2`, `sin²β = sin²u + sinθi sinθr sin²(Δ/2)`.
 
 use crate::numeric::math::{Math, Real, Std};
@@ -126,10 +127,18 @@ pub struct HalfVector<T = f64> {
 #[inline(always)]
 pub fn half_vector<M: Math>(t: &Trig<M::F>) -> HalfVector<M::F> {
     let two = M::F::of(2.0);
-    let cosv = M::mla(t.cr, t.cu, -(t.sr * t.su));
+    let sz = t.ci + t.cr;
+    // cos v from `cosθi + cosθr = 2 cos v cos u`: a sum of two non-negative terms over
+    // `cos u ≥ cos(π/4)`, with no cancellation as both directions approach the horizon (where
+    // `cos(θr + u) = cosθr cos u − sinθr sin u` loses `1/cos v` ulps). `cos u = 0` only below
+    // the horizon (|θi − θr| = π): 0 there, an invalid element.
+    let cosv = if t.cu > M::F::ZERO {
+        sz / (two * t.cu)
+    } else {
+        M::F::ZERO
+    };
     let dif = cosv * t.su;
     let ch2 = t.ch * t.ch;
-    let sz = t.ci + t.cr;
     let rho2 = M::F::of(4.0) * M::mla(dif, dif, t.si * t.sr * ch2);
     HalfVector {
         along: two * M::mla(t.sr, ch2, dif),
