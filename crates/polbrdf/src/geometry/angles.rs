@@ -41,27 +41,12 @@ impl<T: Real> Trig<T> {
     /// one-geometry path ([`Trig::in_range`]). The half angles are formed in f64 whatever `T`.
     #[inline(always)]
     pub fn new<M: Math<F = T>>(theta_i: f64, phi_i: f64, theta_r: f64, phi_r: f64) -> Self {
-        let h = 0.5 * (phi_r - phi_i);
-        let h = if h.abs() <= M::SINCOS_MAX { h } else { 0.0 };
-        let (si, ci) = M::sincos(theta_i);
-        let (sr, cr) = M::sincos(theta_r);
-        let (sh, ch) = M::sincos(h);
-        let (su, cu) = M::sincos(0.5 * (theta_i - theta_r));
-        Self {
-            si,
-            ci,
-            sr,
-            cr,
-            sh,
-            ch,
-            su,
-            cu,
-        }
+        Self::from_reduced::<M>(Self::reduce::<M>(theta_i, phi_i, theta_r, phi_r))
     }
 
     /// The arguments of [`Trig::new`] reduced by backend `M` ([`Math::reduce`]), in the order
-    /// θi, θr, `Δ/2`, `u`, with the same out-of-range replacement of `Δ/2`:
-    /// `Trig::from_reduced::<M>(Trig::reduce::<M>(..)) == Trig::new::<M>(..)`.
+    /// θi, θr, `Δ/2`, `u` (the batch kernel runs the reduction and [`Trig::from_reduced`] in
+    /// separate loops).
     #[inline(always)]
     pub fn reduce<M: Math<F = T>>(
         theta_i: f64,
