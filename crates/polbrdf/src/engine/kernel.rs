@@ -1370,7 +1370,8 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
 ) {
     const L: usize = 4;
     let refine = |j: usize| tail[j] & !fallback[j];
-    // Most blocks have no lane to refine: one vectorized test first.
+    // A block without a lane to refine (most blocks of a rough material) leaves after one
+    // vectorized test.
     if !(0..len).fold(false, |any, j| any | refine(j)) {
         return;
     }
@@ -1382,7 +1383,8 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
         lanes[n.min(N - 1)] = j;
         n += usize::from(refine(j));
     }
-    // (Plain loops: a closure would not inherit the kernel's target features.)
+    // The arithmetic in plain loops: a closure that is not inlined would not inherit the
+    // kernel's target features (an `array::map` here compiled to calls of a software fma).
     for c in (0..n).step_by(L) {
         let mut group = [0usize; L];
         for l in 0..L {
