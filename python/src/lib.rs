@@ -4,14 +4,14 @@
 //! hands this module four contiguous 1-D float64 arrays of equal length. Everything here works
 //! on those flat arrays with the GIL released: in parallel chunks (rayon), each chunk converted
 //! from degrees on the stack when needed, validated as a core [`GeometryBatch`] and evaluated by
-//! the core's batch API ([`batch::mueller_into`], [`batch::brdf_dolp_into`]), writing straight
+//! the core's batch API ([`polbrdf::batch::mueller_into`], [`polbrdf::batch::brdf_dolp_into`]), writing straight
 //! into the NumPy output arrays.
 //!
 //! Thermal emission takes the same road: Planck's law on flat wavelength/temperature arrays
-//! ([`planck_flat`], [`brightness_temperature_flat`]), the emissivity Stokes vector per view
+//! (`planck_flat`, `brightness_temperature_flat`), the emissivity Stokes vector per view
 //! zenith and wavelength, batched by distinct wavelength and zenith into the core's
-//! `analysis::emission::emissivities` ([`emissivity_flat`]), and the observed Stokes radiance of
-//! a thermal scene through `analysis::scene::observed_radiance` ([`radiance_flat`]).
+//! `analysis::emission::emissivities` (`emissivity_flat`), and the observed Stokes radiance of
+//! a thermal scene through `analysis::scene::observed_radiance` (`radiance_flat`).
 //!
 //! Errors are Python exceptions: the core's `InvalidAngle` / `InvalidParameter` /
 //! `InconsistentParameters` / `UnknownPreset` become `ValueError` with the core's message, file
@@ -774,9 +774,10 @@ fn out_rows<'py, T: numpy::Element>(
 }
 
 /// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` array, row-major 4×4 per
-/// geometry, in `precision` (`"float64"`, or `"float32"`: each entry computed in f64 and rounded
-/// when stored), written into `out` when given (an `(n, 16)` C-contiguous array of that dtype,
-/// which is returned). The Python layer reshapes it to `shape + (4, 4)`.
+/// geometry, in `precision` (`"float64"`, or `"float32"`: computed in single precision, every
+/// entry within `1e-5·F00 + 2⁻¹⁵⁰` of float64, docs/model.md §12), written into `out` when
+/// given (an `(n, 16)` C-contiguous array of that dtype, which is returned). The Python layer
+/// reshapes it to `shape + (4, 4)`.
 #[pyfunction]
 #[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None, out=None, precision="float64"))]
 #[allow(clippy::too_many_arguments)]

@@ -26,14 +26,14 @@ type NullLoci = (Vec<(f64, f64)>, Vec<(f64, f64)>);
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Target material: a TOML file, or a preset name (see `polbrdf materials`). With
-    /// --scene, overrides the scene's [target] material.
+    /// --scene, overrides the scene's `[target]` material.
     #[arg(long, value_name = "FILE.toml|PRESET")]
     pub target: Option<String>,
     /// Background material: a TOML file, or a preset name. With --scene, overrides the
-    /// scene's [background] material.
+    /// scene's `[background]` material.
     #[arg(long, value_name = "FILE.toml|PRESET")]
     pub background: Option<String>,
-    /// A scene file (TOML: wavelength or band, sky, atmosphere, [target] and [background]
+    /// A scene file (TOML: wavelength or band, sky, atmosphere, `[target]` and `[background]`
     /// materials and temperatures; see the README): target and background compared by their
     /// observed Stokes radiances — thermal emission and sky included — instead of under one
     /// collimated source.

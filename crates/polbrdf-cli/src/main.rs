@@ -65,7 +65,7 @@ enum Command {
         #[arg(long, value_name = "INIT.toml|PRESET")]
         material: String,
         /// Measurements: the four angle columns plus any of brdf, dolp, brdf_s, brdf_p, m00 …
-        /// m33, each optionally with sigma_<column> (1-σ), and wavelength_um (µm) for spectral
+        /// m33, each optionally with `sigma_<column>` (1-σ), and wavelength_um (µm) for spectral
         /// data. Empty cells mean "not measured".
         #[arg(long, value_name = "MEAS.csv")]
         data: PathBuf,

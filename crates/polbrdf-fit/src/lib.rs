@@ -3,7 +3,7 @@
 //! - [`zbs::invert`]: the zero-bistatic inversion of eq. 5 (docs/model.md §7): from backscatter BRDF
 //!   measurements and known ρ_D, ρ_V, the samples of D(θN) and `(a, b)` by weighted log-linear
 //!   regression, with standard errors.
-//! - [`fit`]: a Levenberg–Marquardt fit of any subset of the material parameters to any mix of
+//! - [`mod@fit`]: a Levenberg–Marquardt fit of any subset of the material parameters to any mix of
 //!   measured BRDF, DoLP and Mueller entries, with covariance, correlation and χ².
 
 #![warn(missing_docs)]

@@ -128,7 +128,7 @@ pub enum Smooth {
     /// gives at specular geometry with no volume term).
     Reflection,
     /// DoLP of thermal emission (Kirchhoff: ε = 1 − R), `(Rs − Rp)/(2 − Rs − Rp)`, the subject
-    /// of the paper's ref. [9] (Wolff, Lundberg & Tang 1998).
+    /// of the paper's ref. \[9\] (Wolff, Lundberg & Tang 1998).
     Emission,
 }
 

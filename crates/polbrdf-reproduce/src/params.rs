@@ -42,7 +42,7 @@ pub const TABLE_PAPER_MODEL: [[f64; 5]; 6] = [
     [6.0, 12.0, 20.0, 33.0, 50.0],
 ];
 /// Table 1 as printed, second number of each cell: "Lawrence model" (L. B. Wolff, the
-/// paper's ref. [9]), DoLP in %.
+/// paper's ref. \[9\]), DoLP in %.
 pub const TABLE_PAPER_LAWRENCE: [[f64; 5]; 6] = [
     [7.0, 15.0, 30.0, 58.0, 93.0],
     [7.0, 15.0, 29.0, 56.0, 88.0],

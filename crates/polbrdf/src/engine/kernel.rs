@@ -1,5 +1,5 @@
 //! The serial evaluator of the batch engine: blocks of [`BLOCK`] elements through the block
-//! kernel ([`crate::engine::block`]), at the best instruction set of the CPU, with the
+//! kernel (`crate::engine::block`), at the best instruction set of the CPU, with the
 //! one-geometry path for the elements the kernel must not vectorize. `crate::engine::batch` runs
 //! it in parallel.
 

@@ -1,5 +1,5 @@
 //! Geometry (docs/model.md §1, §4): directions and one source/detector geometry
-//! ([`direction`]), the model's angle variables in closed form ([`angles`]), and many geometries
+//! ([`mod@direction`]), the model's angle variables in closed form ([`angles`]), and many geometries
 //! at once ([`batch`]).
 
 pub mod angles;
