@@ -1395,19 +1395,21 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
         for l in 0..L {
             reduced[l] = trig.reduced_f64(group[l]);
         }
-        let mut theta_n = [0.0f64; L];
+        let mut dv = [0.0f64; L];
+        let mut ok = [false; L];
         for l in 0..L {
             let t = Trig::<f64>::from_reduced::<M>(reduced[l]);
-            theta_n[l] = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
+            let tn = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
+            dv[l] = dist.eval_with::<M>(tn);
+            ok[l] = -dist.exponent(tn) <= <f64 as Thresholds>::D_EXPONENT_MAX
+                && dv[l] >= f64::from(<f32 as Thresholds>::TINY);
         }
-        for (&j, tn) in group.iter().zip(theta_n).take(n - c) {
-            let y = dist.exponent(tn);
-            let v = dist.eval_with::<M>(tn);
-            if -y > <f64 as Thresholds>::D_EXPONENT_MAX || v < f64::from(<f32 as Thresholds>::TINY)
-            {
-                fallback[j] = true;
+        for l in 0..L.min(n - c) {
+            let j = group[l];
+            if ok[l] {
+                d[j] = dv[l] as f32;
             } else {
-                d[j] = v as f32;
+                fallback[j] = true;
             }
         }
     }

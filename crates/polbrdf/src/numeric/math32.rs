@@ -39,7 +39,7 @@ impl<const FMA: bool> Math for Single<FMA> {
     }
     #[inline(always)]
     fn reduce(x: f64) -> [f32; 3] {
-        reduce32(x)
+        reduce32::<FMA>(x)
     }
     #[inline(always)]
     fn reduce_small(x: f64) -> [f32; 3] {
@@ -66,6 +66,16 @@ impl<const FMA: bool> Math for Single<FMA> {
 
 /// Largest `|x|` (rad) for which [`sincos32`] is used (as the f64 backends' bound).
 const SINCOS32_ARG_MAX: f64 = 65_536.0;
+
+/// `a·b + c` in f64 (the reduction): one rounding with `FMA`, two without.
+#[inline(always)]
+fn mla64<const FMA: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FMA {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
 
 /// `a·b + c` in f32: one rounding with `FMA`, two without.
 #[inline(always)]
@@ -115,18 +125,19 @@ const CF3: f32 = 2.443_315_711_809_948e-5;
 /// `sincos32(0.0) == (0.0, 1.0)`.
 #[inline(always)]
 pub(crate) fn sincos32<const FMA: bool>(x: f64) -> (f32, f32) {
-    sincos32_reduced::<FMA>(reduce32(x))
+    sincos32_reduced::<FMA>(reduce32::<FMA>(x))
 }
 
 /// The f64 part of [`sincos32`]: `[r_f32, r_lo, k]` with `x = k·π/2 + r_f32 + r_lo` (`k` an
-/// integer, exact in f32 for `|x| ≤ 65536`).
+/// integer, exact in f32 for `|x| ≤ 65536`). With `FMA` each step is one fused operation (the
+/// products `k·PIO2_1` and `k·PIO2_2` are exact, so only the tail's rounding differs).
 #[inline(always)]
-pub(crate) fn reduce32(x: f64) -> [f32; 3] {
-    let t = x * FRAC_2_PI + MAGIC;
+pub(crate) fn reduce32<const FMA: bool>(x: f64) -> [f32; 3] {
+    let t = mla64::<FMA>(x, FRAC_2_PI, MAGIC);
     let k = t - MAGIC;
-    let r = x - k * PIO2_1; // exact
-    let r = r - k * PIO2_2;
-    let r = r - k * PIO2_2T;
+    let r = mla64::<FMA>(-k, PIO2_1, x); // exact
+    let r = mla64::<FMA>(-k, PIO2_2, r);
+    let r = mla64::<FMA>(-k, PIO2_2T, r);
     let rf = r as f32;
     [rf, (r - rf as f64) as f32, k as f32]
 }
