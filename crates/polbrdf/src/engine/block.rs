@@ -123,21 +123,6 @@ impl<const N: usize, T: Real> TrigLanes<N, T> {
             }
         }
     }
-    /// Lane `j`'s reduced arguments in f64 (`r + r_lo` exact to about 2⁻⁴⁸ relative in f64
-    /// when `T` is f32): what [`Math::sincos_reduced`] of an f64 backend takes.
-    #[inline(always)]
-    pub(crate) fn reduced_f64(&self, j: usize) -> [[f64; 3]; 4] {
-        let r = &self.reduced;
-        let mut out = [[0.0; 3]; 4];
-        for a in 0..4 {
-            out[a] = [
-                r[a][0][j].to_f64() + r[a][1][j].to_f64(),
-                0.0,
-                r[a][2][j].to_f64(),
-            ];
-        }
-        out
-    }
     #[inline(always)]
     fn get_reduced(&self, j: usize) -> [[T; 3]; 4] {
         let r = &self.reduced;

@@ -6,7 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::engine::block::{
-    self, AngleNeeds, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds, TrigLanes,
+    self, AngleNeeds, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds,
 };
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
@@ -1354,14 +1354,13 @@ impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
 /// to f32: far down D's tail its relative error is `2bθN²` times θN's, which f32 cannot hold
 /// to 1e-5 beyond `bθN² ≈ 20` (docs/model.md §12, "Precision"), while D itself only
 /// multiplies the other terms, whose f32 accuracy does not degrade there. Only θN is
-/// recomputed: the four sine/cosine pairs in f64 from the block's reduced arguments (`trig`:
-/// the f64 reduction's `r` kept to about 2⁻⁴⁸ as two f32s, so the f64 polynomials need no
-/// reduction of their own), the half vector and one arctangent, 4 lanes at a time; where even
-/// f64 is ill-conditioned, or D is below f32's comfortable range, the element takes the f64
-/// path (`fallback`).
+/// recomputed, from the block's f64 angles (`input`) as the f64 path computes it — the
+/// reduction, the four sine/cosine pairs, the half vector and one arctangent — 4 lanes at a
+/// time; where even f64 is ill-conditioned, or D is below f32's comfortable range, the element
+/// takes the f64 path (`fallback`).
 #[inline(always)]
 fn refine_d<M: Math<F = f64>, const N: usize>(
-    trig: &TrigLanes<N, f32>,
+    input: &BlockIn<N>,
     len: usize,
     dist: crate::model::distribution::Distribution,
     d: &mut Lanes<N, f32>,
@@ -1369,42 +1368,53 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
     fallback: &mut [bool; N],
 ) {
     const L: usize = 4;
-    let refine = |j: usize| tail[j] & !fallback[j];
-    // A block without a lane to refine (most blocks of a rough material) leaves after one
-    // vectorized test.
-    if !(0..len).fold(false, |any, j| any | refine(j)) {
-        return;
+    const { assert!(N <= 64, "a block's lanes are one u64 mask") };
+    // The lanes to refine as a bit mask, in one pass over the block; a block without any (most
+    // blocks of a rough material) leaves here.
+    let mut mask = 0u64;
+    for j in 0..N {
+        mask |= u64::from(tail[j] & !fallback[j]) << j;
     }
-    // The lanes to refine, compacted without a branch (the lanes are random, and a
-    // mispredicted branch per lane cost more than the test), padded with the last one.
-    let mut lanes = [0usize; N];
-    let mut n = 0;
-    for j in 0..len {
-        lanes[n.min(N - 1)] = j;
-        n += usize::from(refine(j));
+    if len < 64 {
+        mask &= (1u64 << len) - 1;
     }
-    // The arithmetic in plain loops: a closure that is not inlined would not inherit the
-    // kernel's target features (an `array::map` here compiled to calls of a software fma).
-    for c in (0..n).step_by(L) {
+    // Groups of L lanes taken from the mask, lowest first (no branch per lane: the lanes are
+    // random, and a mispredicted branch per lane cost more than the arithmetic); a group
+    // short of L repeats its last lane, which writes the same result twice.
+    while mask != 0 {
         let mut group = [0usize; L];
-        for l in 0..L {
-            group[l] = lanes[(c + l).min(n - 1)];
+        let mut last = mask.trailing_zeros() as usize;
+        for g in group.iter_mut() {
+            let j = if mask != 0 {
+                mask.trailing_zeros() as usize
+            } else {
+                last
+            };
+            *g = j;
+            last = j;
+            mask &= mask.wrapping_sub(1);
         }
-        // Gathered first, so that the loop below is over contiguous lanes and vectorizes.
-        let mut reduced = [[[0.0f64; 3]; 4]; L];
+        // The arithmetic in plain loops over contiguous lanes (a closure that is not inlined
+        // would not inherit the kernel's target features: an `array::map` here once compiled
+        // to calls of a software fma). The angles are the block's f64 input, reduced by the
+        // f64 backend as on the f64 path.
+        let mut angles4 = [[0.0f64; L]; 4];
         for l in 0..L {
-            reduced[l] = trig.reduced_f64(group[l]);
+            let j = group[l];
+            [angles4[0][l], angles4[1][l], angles4[2][l], angles4[3][l]] =
+                [input.ti[j], input.pi[j], input.tr[j], input.pr[j]];
         }
         let mut dv = [0.0f64; L];
         let mut ok = [false; L];
         for l in 0..L {
-            let t = Trig::<f64>::from_reduced::<M>(reduced[l]);
+            let [ti, pi, tr, pr] = [angles4[0][l], angles4[1][l], angles4[2][l], angles4[3][l]];
+            let t = Trig::<f64>::new::<M>(ti, pi, tr, pr);
             let tn = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
             dv[l] = dist.eval_with::<M>(tn);
             ok[l] = -dist.exponent(tn) <= <f64 as Thresholds>::D_EXPONENT_MAX
                 && dv[l] >= f64::from(<f32 as Thresholds>::TINY);
         }
-        for l in 0..L.min(n - c) {
+        for l in 0..L {
             let j = group[l];
             if ok[l] {
                 d[j] = dv[l] as f32;
@@ -1442,7 +1452,7 @@ impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
             let idx = self.index.lanes_f32::<N>(start, len, k.ill32, &mut cache);
             block::front_q_d::<S1, N>(&k.params, geo, &idx, &mut front);
             let (d, tail, fb) = front.d_tail_mut();
-            refine_d::<M, N>(&scratch.trig, len, k.params.distribution, d, tail, fb);
+            refine_d::<M, N>(&scratch.input, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
             let dst = &mut self.out[start..start + len];
