@@ -80,6 +80,79 @@ fn write_bandwidth(threads: usize, repeats: usize, n: usize) -> Result<f64, CliE
     Ok(size_of_val(buf.as_slice()) as f64 / s)
 }
 
+/// The arithmetic roof of one thread: fused multiply-adds per second in 128-bit and in 256-bit
+/// registers (`(per_s_128, per_s_256)`; 4 and 8 f32 lanes, 2 and 4 f64 lanes), 12 independent
+/// chains each so that throughput binds, not latency; medians of `repeats`. `None` without
+/// AVX2 and FMA. A 256-bit rate near half the 128-bit one means 256-bit operations run as two
+/// 128-bit halves (AMD Zen 1): AVX2 then has no more arithmetic throughput than SSE. (512-bit
+/// registers are not timed: on an AVX-512 CPU the peak reported is the 256-bit one.)
+fn fma_rates(repeats: usize) -> Option<(f64, f64)> {
+    #[cfg(target_arch = "x86_64")]
+    if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
+        const ITERS: usize = 4_000_000;
+        let mut sink = 0.0f32;
+        let s128 = median_seconds(repeats, || {
+            // SAFETY: the CPU has AVX2 and FMA (tested above).
+            sink += unsafe { fma_chains::<false>(black_box(ITERS)) }
+        });
+        let s256 = median_seconds(repeats, || {
+            // SAFETY: as above.
+            sink += unsafe { fma_chains::<true>(black_box(ITERS)) }
+        });
+        black_box(sink);
+        let fmas = (FMA_CHAINS * ITERS) as f64;
+        return Some((fmas / s128, fmas / s256));
+    }
+    let _ = repeats;
+    None
+}
+
+const FMA_CHAINS: usize = 12;
+
+/// `iters` rounds of one fused multiply-add on each of [`FMA_CHAINS`] independent registers,
+/// 256-bit wide with `WIDE`, else 128-bit; returns a lane of their sum (to keep them live).
+///
+/// # Safety
+/// The CPU must support AVX2 and FMA.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+unsafe fn fma_chains<const WIDE: bool>(iters: usize) -> f32 {
+    use std::arch::x86_64::*;
+    if WIDE {
+        let (m, c) = (_mm256_set1_ps(0.9999), _mm256_set1_ps(1e-4));
+        let mut x = [_mm256_setzero_ps(); FMA_CHAINS];
+        for (k, v) in x.iter_mut().enumerate() {
+            *v = _mm256_set1_ps(1.0 + 0.01 * k as f32);
+        }
+        for _ in 0..iters {
+            for v in x.iter_mut() {
+                *v = _mm256_fmadd_ps(*v, m, c);
+            }
+        }
+        let mut sum = _mm256_setzero_ps();
+        for v in x {
+            sum = _mm256_add_ps(sum, v);
+        }
+        _mm256_cvtss_f32(sum)
+    } else {
+        let (m, c) = (_mm_set1_ps(0.9999), _mm_set1_ps(1e-4));
+        let mut x = [_mm_setzero_ps(); FMA_CHAINS];
+        for (k, v) in x.iter_mut().enumerate() {
+            *v = _mm_set1_ps(1.0 + 0.01 * k as f32);
+        }
+        for _ in 0..iters {
+            for v in x.iter_mut() {
+                *v = _mm_fmadd_ps(*v, m, c);
+            }
+        }
+        let mut sum = _mm_setzero_ps();
+        for v in x {
+            sum = _mm_add_ps(sum, v);
+        }
+        _mm_cvtss_f32(sum)
+    }
+}
+
 /// Nanoseconds per element of each of the kernel's elementary operations on one thread
 /// (4096-element arrays, in L1, at the kernel's SIMD level), medians of `repeats`; and the
 /// floor they set: what one full-Mueller element of `paint` needs of them
@@ -491,6 +564,10 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .collect::<Result<Vec<_>, _>>()?;
     let bandwidth = write_bandwidth(threads, args.repeats, n)?;
     let elementary = elementary_ns(args.repeats, Kernel::new(&material).level());
+    let fma = fma_rates(args.repeats);
+    // f32 lanes per second at the better width, and whether 256 bits run at full width.
+    let fma_lanes = fma.map(|(r128, r256)| (4.0 * r128).max(8.0 * r256));
+    let full_width = fma.map(|(r128, r256)| 2.0 * r256 > 1.5 * r128);
     let floor_ns: f64 = FLOOR_COUNTS
         .iter()
         .map(|(op, k)| {
@@ -556,6 +633,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 "full_mueller_roofline_evals_per_s": bandwidth / 128.0,
                 "full_mueller_f32_roofline_evals_per_s": bandwidth / 64.0,
             },
+            "fma_throughput_one_thread": fma.map(|(r128, r256)| json!({
+                "fma_per_s_128bit": r128,
+                "fma_per_s_256bit": r256,
+                "peak_f32_flops": 2.0 * fma_lanes.unwrap_or(0.0),
+                "peak_f64_flops": fma_lanes.unwrap_or(0.0),
+                "full_width_256bit": full_width,
+            })),
             "elementary_ns_per_element_one_thread": elementary
                 .iter()
                 .map(|(op, ns)| (op.name().to_string(), json!(ns)))
@@ -638,6 +722,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             bandwidth / 128e6,
             bandwidth / 64e6
         );
+        if let (Some((r128, r256)), Some(lanes), Some(full)) = (fma, fma_lanes, full_width) {
+            println!(
+                "fused multiply-adds (1 thread): {:.2} G/s in 128-bit registers, {:.2} G/s in \
+                 256-bit: a peak of {:.1} GFLOP/s in f32, {:.1} in f64 per thread{}",
+                r128 / 1e9,
+                r256 / 1e9,
+                2.0 * lanes / 1e9,
+                lanes / 1e9,
+                if full {
+                    ""
+                } else {
+                    " — 256-bit operations at half rate (two 128-bit halves, as on AMD Zen 1): \
+                     AVX2 has no more arithmetic throughput than SSE here"
+                }
+            );
+        }
         let list: Vec<String> = elementary
             .iter()
             .map(|(op, ns)| format!("{} {ns:.2}", op.name()))

@@ -36,6 +36,31 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
     }
     let floor_ns = floor["ns_per_element_one_thread"].as_f64().unwrap();
     assert!((floor_ns - sum).abs() <= 1e-9 * sum, "{floor_ns} vs {sum}");
+    // The arithmetic roof: both widths timed where the CPU has AVX2 and FMA, the peaks what the
+    // better width gives (4 or 8 f32 lanes per instruction, 2 flops per fused multiply-add).
+    let fma = &doc["fma_throughput_one_thread"];
+    if doc["cpu"]["simd"]
+        .as_str()
+        .is_some_and(|s| s.contains("avx2") || s == "avx512")
+    {
+        let r128 = fma["fma_per_s_128bit"]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{fma}"));
+        let r256 = fma["fma_per_s_256bit"].as_f64().unwrap();
+        assert!(r128 > 0.0 && r256 > 0.0, "{fma}");
+        let peak64 = fma["peak_f64_flops"].as_f64().unwrap();
+        assert!(
+            (peak64 - (4.0 * r128).max(8.0 * r256)).abs() <= 1e-9 * peak64,
+            "{fma}"
+        );
+        assert_eq!(fma["peak_f32_flops"].as_f64().unwrap(), 2.0 * peak64);
+        assert_eq!(
+            fma["full_width_256bit"].as_bool().unwrap(),
+            2.0 * r256 > 1.5 * r128
+        );
+    } else {
+        assert!(fma.is_null(), "{fma}");
+    }
     assert!(doc["single_eval_ns"]["kernel"].as_f64().unwrap() > 0.0);
     assert!(doc["single_eval_ns"]["reference"].as_f64().unwrap() > 0.0);
     assert!(doc["cpu"]["model"].as_str().is_some_and(|s| !s.is_empty()));
