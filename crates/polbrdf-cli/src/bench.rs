@@ -118,38 +118,42 @@ const FMA_CHAINS: usize = 12;
 #[target_feature(enable = "avx2,fma")]
 unsafe fn fma_chains<const WIDE: bool>(iters: usize) -> f32 {
     use std::arch::x86_64::*;
+    // One body for both widths: the intrinsics of one register width.
+    macro_rules! chains {
+        ($set1:ident, $zero:ident, $fma:ident, $add:ident, $first:ident) => {{
+            let (m, c) = ($set1(0.9999), $set1(1e-4));
+            let mut x = [$zero(); FMA_CHAINS];
+            for (k, v) in x.iter_mut().enumerate() {
+                *v = $set1(1.0 + 0.01 * k as f32);
+            }
+            for _ in 0..iters {
+                for v in x.iter_mut() {
+                    *v = $fma(*v, m, c);
+                }
+            }
+            let mut sum = $zero();
+            for v in x {
+                sum = $add(sum, v);
+            }
+            $first(sum)
+        }};
+    }
     if WIDE {
-        let (m, c) = (_mm256_set1_ps(0.9999), _mm256_set1_ps(1e-4));
-        let mut x = [_mm256_setzero_ps(); FMA_CHAINS];
-        for (k, v) in x.iter_mut().enumerate() {
-            *v = _mm256_set1_ps(1.0 + 0.01 * k as f32);
-        }
-        for _ in 0..iters {
-            for v in x.iter_mut() {
-                *v = _mm256_fmadd_ps(*v, m, c);
-            }
-        }
-        let mut sum = _mm256_setzero_ps();
-        for v in x {
-            sum = _mm256_add_ps(sum, v);
-        }
-        _mm256_cvtss_f32(sum)
+        chains!(
+            _mm256_set1_ps,
+            _mm256_setzero_ps,
+            _mm256_fmadd_ps,
+            _mm256_add_ps,
+            _mm256_cvtss_f32
+        )
     } else {
-        let (m, c) = (_mm_set1_ps(0.9999), _mm_set1_ps(1e-4));
-        let mut x = [_mm_setzero_ps(); FMA_CHAINS];
-        for (k, v) in x.iter_mut().enumerate() {
-            *v = _mm_set1_ps(1.0 + 0.01 * k as f32);
-        }
-        for _ in 0..iters {
-            for v in x.iter_mut() {
-                *v = _mm_fmadd_ps(*v, m, c);
-            }
-        }
-        let mut sum = _mm_setzero_ps();
-        for v in x {
-            sum = _mm_add_ps(sum, v);
-        }
-        _mm_cvtss_f32(sum)
+        chains!(
+            _mm_set1_ps,
+            _mm_setzero_ps,
+            _mm_fmadd_ps,
+            _mm_add_ps,
+            _mm_cvtss_f32
+        )
     }
 }
 
