@@ -311,6 +311,12 @@ pub(crate) mod reference {
             }
         }
 
+        /// D of eq. 4 with `b = 1/σ²` and the given `a`.
+        pub fn d(&self, a_norm: f64, theta_n: f64) -> f64 {
+            let sigma = self.sigma_deg.to_radians();
+            a_norm * (-(theta_n * theta_n) / (sigma * sigma)).exp()
+        }
+
         /// (f_s, f_v, F) by the formulas of docs/model.md §5–6, with `a` of the distribution given (it is
         /// checked against a brute-force normalization separately).
         pub fn pbrdf(&self, a_norm: f64, ti: f64, pi: f64, tr: f64, pr: f64) -> (f64, f64, Mat4) {
@@ -318,15 +324,16 @@ pub(crate) mod reference {
                 return (0.0, 0.0, [[0.0; 4]; 4]);
             }
             let ang = angles(ti, pi, tr, pr);
-            let sigma = self.sigma_deg.to_radians();
-            let d = a_norm * (-(ang.theta_n * ang.theta_n) / (sigma * sigma)).exp();
+            let d = self.d(a_norm, ang.theta_n);
             let r_f = reflectance(self.n, self.k, ang.beta);
             let so = self.so(ti, &ang);
             let (ci, cr, cn) = (ti.cos(), tr.cos(), ang.theta_n.cos());
+            // D last, so that the product cannot pass through the subnormal range when D is
+            // near underflow and the geometric factor is large (both directions near grazing).
             let f_s = if self.paper {
-                d * r_f * cn * cn * so / (4.0 * ci * ci * cr * cr)
+                d * (r_f * cn * cn * so / (4.0 * ci * ci * cr * cr))
             } else {
-                d * r_f * so / (4.0 * ci * cr)
+                d * (r_f * so / (4.0 * ci * cr))
             };
             let f_v = self.rho_d + 2.0 * self.rho_v / (ci + cr);
             let m = mueller(&jones(self.n, self.k, ti, pi, tr, pr));

@@ -520,7 +520,7 @@ pub(crate) fn brdf_dolp<M: Math, const N: usize, const AOLP: bool>(
         let c = geo.facet.get(j).cos_beta;
         let [rs2, rp2, _, _] = fresnel::reflectances::<M>(f.n2r[j], f.n2i[j], c, f.qr[j], f.qi[j]);
         let [a, b] = mueller::intensity_coefficients(rs2, rp2);
-        let g = terms::flush_subnormal(f.g[j], a);
+        let g = terms::flush_subnormal(f.g[j], a, f.d[j]);
         let f00 = g * a + f.fv[j];
         gb[j] = g * b;
         let d = stokes::dolp(gb[j].abs(), f00);
@@ -565,7 +565,7 @@ pub(crate) fn mueller<M: Math, const N: usize>(
         let [rs2, rp2, inv_s, inv_p] = fresnel::reflectances::<M>(n2r, n2i, c, qr, qi);
         let amp = fresnel::amplitudes::<M>(n2r, n2i, c, qr, qi, inv_s, inv_p);
         let coef = mueller::diagonal_coefficients::<M>(rs2, rp2, amp);
-        let g = terms::flush_subnormal(f.g[j], coef[0]);
+        let g = terms::flush_subnormal(f.g[j], coef[0], f.d[j]);
         let pairs = [
             geo.pairs[0][j],
             geo.pairs[1][j],

@@ -319,7 +319,7 @@ impl Material {
         let (g, fv, d, so) = self.params.scalar_terms::<Std>(a);
         let coef = mueller::diagonal_coefficients::<Std>(rs2, rp2, amp);
         let r_f = coef[0];
-        let g = terms::flush_subnormal(g, r_f);
+        let g = terms::flush_subnormal(g, r_f, d);
         let rot = angles::rotations::<Std>(pairs);
         let f = mueller::facet_pbrdf::<Std>(coef.map(|c| g * c), fv, rot);
         Evaluation {

@@ -63,20 +63,23 @@ pub fn surface_and_volume<M: Math>(
     let (ci, cr, sz) = (a.cos_i, a.cos_r, a.sz);
     let four_cc = M::F::of(4.0) * ci * cr;
     let (num, den) = match form {
-        Form::Standard => (d * so_num, so_den * four_cc),
-        Form::Paper => (d * so_num * (sz * sz), so_den * (four_cc * ci * cr) * a.s2),
+        Form::Standard => (so_num, so_den * four_cc),
+        Form::Paper => (so_num * (sz * sz), so_den * (four_cc * ci * cr) * a.s2),
     };
-    // 1/(den·s_z) gives both g = num/den and 1/s_z = den/(den·s_z).
+    // 1/(den·s_z) gives both g = D·num/den and 1/s_z = den/(den·s_z). D multiplies last: the
+    // geometric factor num/den is of normal range, while D far down a narrow lobe can be close
+    // to underflow, and a product such as D·s_z² formed first would turn subnormal (and lose
+    // its digits) before 1/den brought it back (docs/model.md §9.9).
     let r = M::F::ONE / (den * sz);
-    (num * sz * r, volume::<M>(rho_d, rho_v, den * r))
+    (d * (num * sz * r), volume::<M>(rho_d, rho_v, den * r))
 }
 
-/// `g`, or 0 when the surface term `g·R_F` is below the smallest normal number (≈ 2.2·10⁻³⁰⁸
-/// sr⁻¹ in f64): a subnormal keeps too few bits for its polarization to mean anything
-/// (docs/model.md §9.9).
+/// `g`, or 0 when D or the surface term `g·R_F` is below the smallest normal number
+/// (≈ 2.2·10⁻³⁰⁸ sr⁻¹ in f64): a subnormal keeps too few bits for the term, or its
+/// polarization, to mean anything (docs/model.md §9.9).
 #[inline(always)]
-pub fn flush_subnormal<T: Real>(g: T, r_f: T) -> T {
-    if g * r_f >= T::MIN_POSITIVE {
+pub fn flush_subnormal<T: Real>(g: T, r_f: T, d: T) -> T {
+    if g * r_f >= T::MIN_POSITIVE && d >= T::MIN_POSITIVE {
         g
     } else {
         T::ZERO
