@@ -14,7 +14,8 @@
 2. Throughput: Mitsuba's `llvm_ad_mono_polarized` `bsdf.eval` (the full Mueller matrix × cosθo,
    float32) over N geometries in one launch (`dr.eval`), the JIT compiled and warm, against
    polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays) on the
-   same geometries, both on every core; and `polbrdf bench` (the Rust batch API) when --cli is
+   same geometries, and its `mueller_directions` on Mitsuba's own float32 direction vectors,
+   both on every core; and `polbrdf bench` (the Rust batch API) when --cli is
    given. Medians of R repeats; prints the ratios.
 """
 
@@ -101,21 +102,27 @@ class Mitsuba:
             }
         )
 
-        def vec(t, p):
-            return mi.Vector3f(
-                (np.sin(t) * np.cos(p)).astype(np.float32),
-                (np.sin(t) * np.sin(p)).astype(np.float32),
-                np.cos(t).astype(np.float32),
-            )
+        def components(t, p):
+            return np.stack(
+                [np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], axis=-1
+            ).astype(np.float32)
+
+        def vec(w):
+            return mi.Vector3f(w[:, 0], w[:, 1], w[:, 2])
+
+        # The float32 vectors Mitsuba gets, as (n, 3) float64 arrays for
+        # `polbrdf.mueller_directions`: both evaluate exactly the same directions.
+        self.w_source = components(ti, pi).astype(np.float64)
+        self.w_detector = components(tr, pr).astype(np.float64)
 
         n = len(ti)
         si = dr.zeros(mi.SurfaceInteraction3f, n)
         # Mitsuba's si.wi points to the sensor (polbrdf's detector, θr), wo to the light
         # (polbrdf's source, θi); eval returns the Mueller matrix from wo's beam to wi's.
-        si.wi = vec(tr, pr)
+        si.wi = vec(self.w_detector.astype(np.float32))
         si.sh_frame = mi.Frame3f(mi.Normal3f(0, 0, 1))
         si.n = mi.Normal3f(0, 0, 1)
-        self.si, self.wo, self.ctx = si, vec(ti, pi), mi.BSDFContext()
+        self.si, self.wo, self.ctx = si, vec(self.w_source.astype(np.float32)), mi.BSDFContext()
         dr.eval(self.si, self.wo)
 
     def eval(self):
@@ -188,6 +195,14 @@ def main() -> None:
         (
             "polbrdf.mueller float32 (precision), out= reused",
             lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out32),
+        ),
+        (
+            "polbrdf.mueller_directions float64 (Mitsuba's vectors), out= reused",
+            lambda: polbrdf.mueller_directions(mat, mit.w_source, mit.w_detector, out=out64),
+        ),
+        (
+            "polbrdf.mueller_directions float32 (Mitsuba's vectors), out= reused",
+            lambda: polbrdf.mueller_directions(mat, mit.w_source, mit.w_detector, out=out32),
         ),
     ]
     times = medians_s(r, [f for _, f in cases])

@@ -69,6 +69,7 @@ __all__ = [
     "fit",
     "index",
     "mueller",
+    "mueller_directions",
     "planck",
     "radiance",
     "stokes_aolp",
@@ -261,6 +262,84 @@ def mueller(
     rows = None if out is None else _out_rows(out, shape + (4, 4), dtype)
     try:
         res = _polbrdf.mueller_flat(material, *flat[:4], degrees, _wl(flat), rows, dtype.name)
+    except ValueError as e:
+        raise _located(e, shape) from None
+    return out if out is not None else res.reshape(shape + (4, 4))
+
+
+def mueller_directions(
+    material: Material,
+    w_i: ArrayLike,
+    w_r: ArrayLike,
+    *,
+    wavelength_um: ArrayLike | None = None,
+    out: NDArray[np.floating] | None = None,
+    precision: str | type | np.dtype | None = None,
+) -> NDArray[np.floating]:
+    """The pBRDF F at direction vectors: :func:`mueller` for callers that hold directions, as a
+    renderer or ray tracer does (docs/model.md §9.11).
+
+    Parameters
+    ----------
+    material : Material
+    w_i : array_like, shape ``(..., 3)``
+        Direction toward the source, ``(x, y, z)`` in the surface frame (z along the normal,
+        x along azimuth 0): any length from 1e-15 to 1e15 (each vector is normalized).
+    w_r : array_like, shape ``(..., 3)``
+        Direction toward the detector, same frame; broadcast with ``w_i`` over the leading
+        dimensions (a single vector stands for all without being copied).
+    wavelength_um, out, precision
+        As for :func:`mueller` (``wavelength_um`` broadcast with the leading dimensions).
+
+    Returns
+    -------
+    ndarray of float64 (or float32), shape ``broadcast_shape + (4, 4)``
+        The result of :func:`mueller` at ``θ = atan2(√(x² + y²), z)``, ``φ = atan2(y, x)``, and
+        ``φ = 0`` for a vector along the normal; computed from the vectors without a sine or
+        cosine. Zero where ``z ≤ 0`` (at or below the horizon).
+
+    Raises
+    ------
+    ValueError
+        For a vector that is not finite or whose length is outside 1e-15..1e15 (naming
+        ``w_i`` or ``w_r``, the vector and its flat index), a last dimension other than 3,
+        arguments that do not broadcast, and as :func:`mueller` for ``out`` and ``precision``.
+    TypeError
+        As :func:`mueller`.
+    """
+    _check_material(material)
+    dtype = _precision(precision, out)
+    wi, wr = _real("w_i", w_i), _real("w_r", w_r)
+    for name, w in (("w_i", wi), ("w_r", wr)):
+        if w.ndim == 0 or w.shape[-1] != 3:
+            raise ValueError(
+                f"`{name}` must have shape (..., 3): (x, y, z) in the surface frame, "
+                f"got {w.shape}"
+            )
+    wl = None if wavelength_um is None else _real("wavelength_um", wavelength_um)
+    shapes = [wi.shape[:-1], wr.shape[:-1]] + ([] if wl is None else [wl.shape])
+    try:
+        shape = np.broadcast_shapes(*shapes)
+    except ValueError as e:
+        given = f"w_i: {wi.shape}, w_r: {wr.shape}"
+        if wl is not None:
+            given += f", wavelength_um: {wl.shape}"
+        raise ValueError(f"arrays do not broadcast together ({given})") from e
+
+    def vectors(w: np.ndarray) -> _F64:
+        if w.size == 3:
+            return np.ascontiguousarray(w, dtype=np.float64).reshape(1, 3)
+        full = np.broadcast_to(w, shape + (3,))
+        return np.ascontiguousarray(full, dtype=np.float64).reshape(-1, 3)
+
+    flat_wl = None
+    if wl is not None:
+        flat_wl = np.ascontiguousarray(np.broadcast_to(wl, shape), dtype=np.float64).reshape(-1)
+    rows = None if out is None else _out_rows(out, shape + (4, 4), dtype)
+    try:
+        res = _polbrdf.mueller_directions_flat(
+            material, vectors(wi), vectors(wr), flat_wl, rows, dtype.name
+        )
     except ValueError as e:
         raise _located(e, shape) from None
     return out if out is not None else res.reshape(shape + (4, 4))

@@ -16,6 +16,7 @@ __all__ = [
     "fit_flat",
     "index_flat",
     "mueller_flat",
+    "mueller_directions_flat",
     "planck_flat",
     "radiance_flat",
 ]
@@ -135,8 +136,22 @@ def mueller_flat(
     phi_r: NDArray[np.float64],
     degrees: bool,
     wavelength_um: NDArray[np.float64] | None = None,
-) -> NDArray[np.float64]:
-    """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16)."""
+    out: NDArray[np.floating] | None = None,
+    precision: str = "float64",
+) -> NDArray[np.floating]:
+    """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16), written
+    into ``out`` when given (an (n, 16) C-contiguous array of the precision's dtype)."""
+
+def mueller_directions_flat(
+    material: Material,
+    w_i: NDArray[np.float64],
+    w_r: NDArray[np.float64],
+    wavelength_um: NDArray[np.float64] | None = None,
+    out: NDArray[np.floating] | None = None,
+    precision: str = "float64",
+) -> NDArray[np.floating]:
+    """pBRDF (sr⁻¹) at n pairs of direction vectors, (n, 3) C-contiguous float64 arrays (or
+    (1, 3) for all), shape (n, 16); ``out`` as for ``mueller_flat``."""
 
 def brdf_dolp_flat(
     material: Material,

@@ -28,8 +28,8 @@ use polbrdf::engine::batch::STREAM_MIN;
 use polbrdf::engine::{Kernel, Precision};
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
-use polbrdf::GeometryBatch;
 use polbrdf::{AngleProblem, AzimuthTerm, Band, Form, Material, MaterialSpec, Spectrum};
+use polbrdf::{Batch, DirectionBatch, GeometryBatch};
 use pyo3::exceptions::{
     PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyValueError,
 };
@@ -54,6 +54,7 @@ fn core_err(py: Python<'_>, e: &polbrdf::Error) -> PyErr {
     let err = PyValueError::new_err(e.to_string());
     let located = match e {
         polbrdf::Error::InvalidAngle { name, index, .. } => Some((python_name(name), *index)),
+        polbrdf::Error::InvalidDirection { name, index, .. } => Some((*name, *index)),
         polbrdf::Error::WavelengthOutOfRange {
             position: Some(i), ..
         } => Some(("wavelength_um", Some(*i))),
@@ -722,34 +723,118 @@ fn python_name(core: &'static str) -> &'static str {
         .unwrap_or(core)
 }
 
-/// Evaluates the pBRDF of the geometries `input` into `rows` (one row-major 4×4 per geometry),
-/// in parallel chunks of [`CHUNK`], each through the serial kernel (`store`: `mueller_into` or
-/// `mueller_f32_into`, which reports an entry beyond f32's range), with non-temporal stores for
-/// outputs beyond 8 MB as the batch API does.
+/// Elements `start .. start + len` of `w`, or its single vector `len` times (in `buf`).
+fn spread<'a>(
+    w: &'a [[f64; 3]],
+    start: usize,
+    len: usize,
+    buf: &'a mut [[f64; 3]; CHUNK],
+) -> &'a [[f64; 3]] {
+    match w {
+        [one] if len > 1 => {
+            buf[..len].fill(*one);
+            &buf[..len]
+        }
+        [_] => w,
+        _ => &w[start..start + len],
+    }
+}
+
+/// How a Mueller-matrix array is filled, chunk by chunk, whatever the kind of batch: the
+/// serial kernel's `mueller_into` (f64) or `mueller_f32_into` (f32, which reports an entry
+/// beyond f32's range).
+trait Store<T>: Sync {
+    /// Fills `rows` for `batch`; true when an entry overflowed f32.
+    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[T; 16]]) -> bool;
+}
+
+/// [`Store`] in float64.
+struct StoreF64;
+
+impl Store<f64> for StoreF64 {
+    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f64; 16]]) -> bool {
+        k.mueller_into(batch, 0, rows);
+        false
+    }
+}
+
+/// [`Store`] in float32.
+struct StoreF32;
+
+impl Store<f32> for StoreF32 {
+    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f32; 16]]) -> bool {
+        k.mueller_f32_into(batch, 0, rows)
+    }
+}
+
+/// Fills `rows` (one row-major 4×4 per geometry) in parallel chunks of [`CHUNK`]: `chunk(c,
+/// rows)` evaluates chunk `c` through the serial kernel (true when an entry overflowed f32),
+/// with non-temporal stores for outputs beyond 8 MB as the batch API does.
+fn mueller_chunks<T: Send>(
+    rows: &mut [[T; 16]],
+    chunk: impl Fn(usize, bool, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
+) -> Result<(), polbrdf::Error> {
+    let stream = size_of_val(rows) >= 16 * 8 * STREAM_MIN;
+    let overflow = rows
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(c, rows)| chunk(c, stream, rows))
+        .try_reduce(|| false, |a, b| Ok(a | b))?;
+    if overflow {
+        return Err(polbrdf::engine::batch::f32_overflow());
+    }
+    Ok(())
+}
+
+/// The pBRDF of the geometries `input` (angles) into `rows` ([`mueller_chunks`]).
 fn mueller_rows<T: Send>(
     m: &Material,
     input: [&[f64]; 4],
     wl: Option<&[f64]>,
     degrees: bool,
     rows: &mut [[T; 16]],
-    store: impl Fn(&Kernel<'_>, &GeometryBatch<'_>, &mut [[T; 16]]) -> bool + Sync,
+    store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
-    let stream = size_of_val(rows) >= 16 * 8 * STREAM_MIN;
-    let overflow = rows
-        .par_chunks_mut(CHUNK)
-        .enumerate()
-        .map(|(c, rows)| {
-            chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
-                with_engine(m, wl, c * CHUNK, rows.len(), |e| {
-                    Ok(store(&e.kernel().clone().streaming(stream), b, rows))
-                })
+    mueller_chunks(rows, |c, stream, rows| {
+        chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
+            with_engine(m, wl, c * CHUNK, rows.len(), |e| {
+                Ok(store.store(&e.kernel().clone().streaming(stream), b, rows))
             })
         })
-        .try_reduce(|| false, |a, b| Ok(a | b))?;
-    if overflow {
-        return Err(polbrdf::engine::batch::f32_overflow());
-    }
-    Ok(())
+    })
+}
+
+/// The pBRDF of the direction vectors `w_i`, `w_r` (equally long, or one of them a single
+/// vector standing for all) into `rows` ([`mueller_chunks`]); a bad vector is named by its
+/// index in the whole array.
+fn direction_rows<T: Send>(
+    m: &Material,
+    [w_i, w_r]: [&[[f64; 3]]; 2],
+    wl: Option<&[f64]>,
+    rows: &mut [[T; 16]],
+    store: &impl Store<T>,
+) -> Result<(), polbrdf::Error> {
+    mueller_chunks(rows, |c, stream, rows| {
+        let (start, len) = (c * CHUNK, rows.len());
+        let (mut bi, mut br) = ([[0.0f64; 3]; CHUNK], [[0.0f64; 3]; CHUNK]);
+        let (si, sr) = (
+            spread(w_i, start, len, &mut bi),
+            spread(w_r, start, len, &mut br),
+        );
+        let batch = DirectionBatch::new(si, sr).map_err(|e| match e {
+            polbrdf::Error::InvalidDirection { name, value, index } => {
+                polbrdf::Error::InvalidDirection {
+                    name,
+                    value,
+                    index: index.map(|i| i + start),
+                }
+            }
+            other => other,
+        })?;
+        with_engine(m, wl, start, len, |e| {
+            Ok(store.store(&e.kernel().clone().streaming(stream), &batch, rows))
+        })
+    })
 }
 
 /// A caller's output array for `n` pBRDFs: an `(n, 16)` C-contiguous, writeable array of the
@@ -800,33 +885,85 @@ fn mueller_flat<'py>(
     let wl = wavelength_slice(&wavelength_um, n)?;
     let m = &material.inner;
     match precision {
-        Precision::F64 => {
-            mueller_array::<f64>(py, m, input, wl, degrees, out, n, "float64", |k, b, r| {
-                k.mueller_into(b, 0, r);
-                false
-            })
+        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
+            mueller_rows(m, input, wl, degrees, rows, &StoreF64)
+        }),
+        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
+            mueller_rows(m, input, wl, degrees, rows, &StoreF32)
+        }),
+    }
+}
+
+/// The vectors of an `(n, 3)` C-contiguous float64 array.
+fn vectors<'a>(a: &'a PyReadonlyArray2<'_, f64>, name: &str) -> PyResult<&'a [[f64; 3]]> {
+    let flat = a
+        .as_slice()
+        .ok()
+        .filter(|_| a.shape()[1] == 3)
+        .ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "`{name}` must be a C-contiguous (n, 3) array of vectors, got shape {:?}",
+                a.shape()
+            ))
+        })?;
+    Ok(flat.as_chunks::<3>().0)
+}
+
+/// The pBRDF at direction vectors (the direction entry point, docs/model.md §9.11): `w_i`,
+/// `w_r` as `(n, 3)` C-contiguous float64 arrays (or `(1, 3)`, standing for every element),
+/// each vector in the surface frame, of any length within 1e-15..1e15; otherwise as
+/// [`mueller_flat`].
+#[pyfunction]
+#[pyo3(signature = (material, w_i, w_r, wavelength_um=None, out=None, precision="float64"))]
+fn mueller_directions_flat<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    w_i: PyReadonlyArray2<'py, f64>,
+    w_r: PyReadonlyArray2<'py, f64>,
+    wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
+    out: Option<Bound<'py, PyAny>>,
+    precision: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let precision: Precision = precision.parse().map_err(|e| core_err(py, &e))?;
+    let (wi, wr) = (vectors(&w_i, "w_i")?, vectors(&w_r, "w_r")?);
+    let lens = [wi.len(), wr.len()];
+    let n = match wavelength_um.as_ref() {
+        Some(w) => w.len(),
+        None if lens.contains(&0) => 0,
+        None => lens[0].max(lens[1]),
+    };
+    for (len, name) in lens.into_iter().zip(["w_i", "w_r"]) {
+        if len != n && len != 1 {
+            let e = polbrdf::Error::LengthMismatch {
+                name,
+                got: len,
+                expected: n,
+            };
+            return Err(core_err(py, &e));
         }
-        Precision::F32 => {
-            mueller_array::<f32>(py, m, input, wl, degrees, out, n, "float32", |k, b, r| {
-                k.mueller_f32_into(b, 0, r)
-            })
-        }
+    }
+    let wl = wavelength_slice(&wavelength_um, n)?;
+    let m = &material.inner;
+    match precision {
+        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
+            direction_rows(m, [wi, wr], wl, rows, &StoreF64)
+        }),
+        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
+            direction_rows(m, [wi, wr], wl, rows, &StoreF32)
+        }),
     }
 }
 
 /// [`mueller_flat`] in the element type `T` (numpy's `dtype`): `out` (checked by [`out_rows`])
-/// or a new `(n, 16)` array, filled by `store` through [`mueller_rows`] with the GIL released.
+/// or a new `(n, 16)` array, filled by `fill` ([`mueller_rows`], [`direction_rows`]) with the
+/// GIL released.
 #[allow(clippy::too_many_arguments)]
 fn mueller_array<'py, T: numpy::Element + Send>(
     py: Python<'py>,
-    m: &Material,
-    input: [&[f64]; 4],
-    wl: Option<&[f64]>,
-    degrees: bool,
     out: Option<Bound<'py, PyAny>>,
     n: usize,
     dtype: &str,
-    store: impl Fn(&Kernel<'_>, &GeometryBatch<'_>, &mut [[T; 16]]) -> bool + Sync + Send,
+    fill: impl FnOnce(&mut [[T; 16]]) -> Result<(), polbrdf::Error> + Send,
 ) -> PyResult<Bound<'py, PyAny>> {
     let arr = match &out {
         Some(o) => out_rows::<T>(o, n, dtype)?,
@@ -837,8 +974,7 @@ fn mueller_array<'py, T: numpy::Element + Send>(
     })?;
     let flat = rw.as_slice_mut().expect("checked C-contiguous");
     let (rows, _) = flat.as_chunks_mut::<16>();
-    py.detach(|| mueller_rows(m, input, wl, degrees, rows, store))
-        .map_err(|e| core_err(py, &e))?;
+    py.detach(|| fill(rows)).map_err(|e| core_err(py, &e))?;
     drop(rw);
     Ok(arr.into_any())
 }
@@ -2145,6 +2281,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyMaterial>()?;
     m.add_function(wrap_pyfunction!(_fit_result_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(mueller_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(mueller_directions_flat, m)?)?;
     m.add_function(wrap_pyfunction!(brdf_dolp_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate_flat, m)?)?;
     m.add_function(wrap_pyfunction!(index_flat, m)?)?;

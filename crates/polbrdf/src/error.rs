@@ -27,6 +27,20 @@ pub enum Error {
         /// What the parameter must satisfy.
         reason: &'static str,
     },
+    /// A direction vector is not finite or its length is outside
+    /// [`crate::geometry::angles::DIRECTION_LENGTH`] (the direction entry point,
+    /// docs/model.md §9.11).
+    #[error("invalid direction `{name}` = [{}, {}, {}]{}: a direction vector must be finite, with a length between 1e-15 and 1e15",
+            show(value[0]), show(value[1]), show(value[2]),
+            index.map(|i| format!(" (at index {i})")).unwrap_or_default())]
+    InvalidDirection {
+        /// `w_i` or `w_r` (or the caller's name for it).
+        name: &'static str,
+        /// The vector that was given.
+        value: [f64; 3],
+        /// Position in a batch.
+        index: Option<usize>,
+    },
     /// A direction angle is NaN/∞ or outside its range (docs/model.md §1).
     #[error("invalid angle `{name}` = {}{}: {}", show(*value),
             index.map(|i| format!(" (at index {i})")).unwrap_or_default(), problem.reason(*degrees))]

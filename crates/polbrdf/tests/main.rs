@@ -5,6 +5,7 @@ mod bounds;
 mod common;
 mod contrast;
 mod daylight;
+mod directions;
 mod emission;
 mod golden;
 mod kernel;

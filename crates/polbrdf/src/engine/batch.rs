@@ -4,7 +4,7 @@
 
 use crate::engine::kernel::{IndexColumns, Kernel, Prepared, BLOCK};
 use crate::error::Result;
-use crate::geometry::batch::check_len;
+use crate::geometry::batch::{check_len, Batch};
 use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
 use crate::model::Material;
 use crate::optics::mueller::Mueller;
@@ -149,7 +149,7 @@ impl<'a> Engine<'a> {
     /// # Errors
     /// [`crate::Error::LengthMismatch`] when `out` (or the per-element index) is not as long as
     /// the batch.
-    pub fn mueller_into(&self, batch: &GeometryBatch<'_>, out: &mut [[f64; 16]]) -> Result<()> {
+    pub fn mueller_into(&self, batch: &impl Batch, out: &mut [[f64; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
         // Outputs far beyond the caches (≥ 8 MB) are written with non-temporal stores.
@@ -170,7 +170,7 @@ impl<'a> Engine<'a> {
     /// [`crate::Error::InconsistentParameters`] when an entry is beyond f32's range
     /// (`|F| > 3.4·10³⁸` sr⁻¹, only for extremely narrow distributions; `out` then holds ±∞
     /// there).
-    pub fn mueller_f32_into(&self, batch: &GeometryBatch<'_>, out: &mut [[f32; 16]]) -> Result<()> {
+    pub fn mueller_f32_into(&self, batch: &impl Batch, out: &mut [[f32; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
         // The same bytes as an f64 output of half the length: stream beyond 8 MB.
@@ -191,7 +191,7 @@ impl<'a> Engine<'a> {
     ///
     /// # Errors
     /// As [`Engine::mueller_into`].
-    pub fn mueller(&self, batch: &GeometryBatch<'_>) -> Result<Vec<[f64; 16]>> {
+    pub fn mueller(&self, batch: &impl Batch) -> Result<Vec<[f64; 16]>> {
         let mut out = vec![[0.0; 16]; batch.len()];
         self.mueller_into(batch, &mut out)?;
         Ok(out)
@@ -204,7 +204,7 @@ impl<'a> Engine<'a> {
     /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
     pub fn brdf_dolp_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         brdf: &mut [f64],
         dolp: &mut [f64],
     ) -> Result<()> {
@@ -229,7 +229,7 @@ impl<'a> Engine<'a> {
     /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
     pub fn brdf_dolp_aolp_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         brdf: &mut [f64],
         dolp: &mut [f64],
         aolp: &mut [f64],
@@ -360,11 +360,7 @@ impl<'a> Engine<'a> {
 ///
 /// # Errors
 /// [`crate::Error::LengthMismatch`] when `out` is not as long as the batch.
-pub fn mueller_into(
-    material: &Material,
-    batch: &GeometryBatch<'_>,
-    out: &mut [[f64; 16]],
-) -> Result<()> {
+pub fn mueller_into(material: &Material, batch: &impl Batch, out: &mut [[f64; 16]]) -> Result<()> {
     Engine::new(material).mueller_into(batch, out)
 }
 
@@ -375,7 +371,7 @@ pub fn mueller_into(
 /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
 pub fn brdf_dolp_into(
     material: &Material,
-    batch: &GeometryBatch<'_>,
+    batch: &impl Batch,
     brdf: &mut [f64],
     dolp: &mut [f64],
 ) -> Result<()> {
@@ -389,7 +385,7 @@ pub fn brdf_dolp_into(
 /// [`crate::Error::LengthMismatch`] when an output slice is not as long as the batch.
 pub fn brdf_dolp_aolp_into(
     material: &Material,
-    batch: &GeometryBatch<'_>,
+    batch: &impl Batch,
     brdf: &mut [f64],
     dolp: &mut [f64],
     aolp: &mut [f64],
@@ -409,6 +405,6 @@ pub fn pbrdf_of(material: &Material, geometries: &[Geometry]) -> Vec<Mueller> {
 ///
 /// # Errors
 /// As [`mueller_into`].
-pub fn mueller(material: &Material, batch: &GeometryBatch<'_>) -> Result<Vec<[f64; 16]>> {
+pub fn mueller(material: &Material, batch: &impl Batch) -> Result<Vec<[f64; 16]>> {
     Engine::new(material).mueller(batch)
 }

@@ -238,6 +238,9 @@ impl<const N: usize, T: Real> Geom<N, T> {
 /// for initializing or moving its arrays.
 pub(crate) struct GeomScratch<const N: usize, T = f64> {
     pub input: BlockIn<N>,
+    /// The direction vectors of a block of the direction entry point (`x, y, z` of `w_i`,
+    /// then of `w_r`), as given.
+    pub dirs: [Lanes<N>; 6],
     pub trig: TrigLanes<N, T>,
     pub geo: Geom<N, T>,
 }
@@ -246,6 +249,7 @@ impl<const N: usize, T: Real> GeomScratch<N, T> {
     pub(crate) fn zeroed() -> Self {
         Self {
             input: BlockIn::zeroed(),
+            dirs: [[0.0; N]; 6],
             trig: TrigLanes::zeroed(),
             geo: Geom::zeroed(),
         }
@@ -299,6 +303,65 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
         let t = Trig::from_reduced::<M>(trig.get_reduced(j));
         trig.set(j, t);
     }
+    facet_stages::<M, N, PAIRS>(trig, g, needs, Some(b));
+}
+
+/// The geometry stages of the block of direction vectors `s.dirs` (the direction entry point,
+/// [`Trig::from_directions`]) into `s.geo`, as [`geometry`] does for angles: the sines and
+/// cosines from the vectors, in f64 on both kernels (the f32 kernel rounds them to f32: from
+/// f32-rounded vectors near grazing, β lost 3.6·10⁻⁵ of F00), θi only where SO needs it, then
+/// the same stages. An element whose azimuth's unit vector would lose digits (`x² + y²` of a
+/// normalized vector below f64's `TINY`, or underflowed to 0, while `(x, y)` is not exactly 0:
+/// within about 1e-140 rad of the normal) takes the one-geometry path. `z > 0` is above the horizon (docs/model.md §9.11).
+#[inline(always)]
+pub(crate) fn geometry_of_directions<M: Math, const N: usize, const PAIRS: bool>(
+    s: &mut GeomScratch<N, M::F>,
+    needs: AngleNeeds,
+) where
+    M::F: Thresholds,
+{
+    let (w, trig, g) = (&s.dirs, &mut s.trig, &mut s.geo);
+    for j in 0..N {
+        let wi = [w[0][j], w[1][j], w[2][j]];
+        let wr = [w[3][j], w[4][j], w[5][j]];
+        let (t, r2) = Trig::<f64>::from_directions(wi, wr);
+        let of = M::F::of;
+        trig.set(
+            j,
+            Trig {
+                si: of(t.si),
+                ci: of(t.ci),
+                sr: of(t.sr),
+                cr: of(t.cr),
+                sh: of(t.sh),
+                ch: of(t.ch),
+                su: of(t.su),
+                cu: of(t.cu),
+            },
+        );
+        g.valid[j] = wi[2] > 0.0 && wr[2] > 0.0;
+        g.out_of_range[j] = r2 < <f64 as Thresholds>::TINY;
+    }
+    if needs.beta {
+        for j in 0..N {
+            let t = trig.get(j);
+            trig.theta_i[j] = M::atan2_pos(t.si, t.ci.max(M::F::ZERO));
+        }
+    }
+    facet_stages::<M, N, PAIRS>(trig, g, needs, None);
+}
+
+/// The stages of [`geometry`] after the sines and cosines: the angles (θN, β where `needs`
+/// says), the cosines, ΦN and, with `PAIRS`, the Priest–Meier pairs. ΦN's rounding level
+/// ([`angles::phi_n`]) takes the azimuths' scale from `angles` when they were given as angles,
+/// 1 for direction vectors (whose components carry relative rounding only).
+#[inline(always)]
+fn facet_stages<M: Math, const N: usize, const PAIRS: bool>(
+    trig: &TrigLanes<N, M::F>,
+    g: &mut Geom<N, M::F>,
+    needs: AngleNeeds,
+    angles_in: Option<&BlockIn<N>>,
+) {
     // Stage 3: the angles (θN, β) and cosines, β only where SO needs it; ΦN (eq3 only) in a
     // loop of its own. Materials without them do not pay for their arctangents.
     if needs.beta {
@@ -315,7 +378,7 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
     if needs.phi_n {
         for j in 0..N {
             let t = trig.get(j);
-            let scale = angles::phi_scale(b.pi[j], b.pr[j]);
+            let scale = angles_in.map_or(1.0, |b| angles::phi_scale(b.pi[j], b.pr[j]));
             g.facet.v[5][j] = angles::phi_n::<M>(&angles::half_vector::<M>(&t), &t, scale);
         }
     }

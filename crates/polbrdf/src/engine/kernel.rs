@@ -11,7 +11,8 @@ use crate::engine::block::{
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
 use crate::geometry::angles::{self, Trig};
-use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
+use crate::geometry::batch::{Batch, Input};
+use crate::geometry::{AngleVariables, DirectionBatch, Geometry, GeometryBatch};
 use crate::model::{Evaluation, Material, ModelParams};
 use crate::numeric::math::{FastPortable, Math};
 use crate::numeric::math32::SinglePortable;
@@ -19,6 +20,23 @@ use crate::optics::dispersion::SpectralIndex;
 use crate::optics::fresnel::{index_squared, RefractiveIndex};
 use crate::optics::mueller::Mueller;
 use crate::optics::stokes::Stokes;
+
+/// Runs `$body` with `$src` bound to the kernel's source of elements `$start .. $start + $len`
+/// of `$batch` (a [`Batch`]): angles or direction vectors.
+macro_rules! with_source {
+    ($batch:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
+        match $batch.input() {
+            Input::Angles(b) => {
+                let $src = Computed(BatchSource::new(&b, $start, $len));
+                $body
+            }
+            Input::Directions(d) => {
+                let $src = Directions::new(&d, $start, $len);
+                $body
+            }
+        }
+    };
+}
 
 /// Elements per block: every stage of the kernel runs over this many elements at a time.
 /// Measured on an AVX2 machine with 32 KB of L1 data cache per core (AMD EPYC, Zen 1 class):
@@ -312,9 +330,11 @@ impl<'a> Kernel<'a> {
     ///
     /// # Panics
     /// When the range exceeds the batch (or a per-element index).
-    pub fn mueller_into(&self, batch: &GeometryBatch<'_>, start: usize, out: &mut [[f64; 16]]) {
-        let src = Computed(BatchSource::new(batch, start, out.len()));
-        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
+    pub fn mueller_into(&self, batch: &impl Batch, start: usize, out: &mut [[f64; 16]]) {
+        let index = self.index_at(start, out.len());
+        with_source!(batch, start, out.len(), |src| {
+            self.run_mueller::<_, _, BLOCK>(&src, index, out);
+        })
     }
 
     /// As [`Kernel::mueller_into`] in single precision (docs/model.md §12, "Precision"): the
@@ -328,24 +348,25 @@ impl<'a> Kernel<'a> {
     /// When the range exceeds the batch (or a per-element index).
     pub fn mueller_f32_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         start: usize,
         out: &mut [[f32; 16]],
     ) -> bool {
-        let src = Computed(BatchSource::new(batch, start, out.len()));
         let index = self.index_at(start, out.len());
-        if self.scalar_only || !self.single {
-            return self.run_mueller::<_, _, BLOCK>(&src, index, out);
-        }
-        let mut job = MuellerF32Job::<_, BLOCK> {
-            kernel: self,
-            src: &src,
-            index,
-            out,
-            overflow: false,
-        };
-        dispatch(self.level, &mut job);
-        job.overflow
+        with_source!(batch, start, out.len(), |src| {
+            if self.scalar_only || !self.single {
+                return self.run_mueller::<_, _, BLOCK>(&src, index, out);
+            }
+            let mut job = MuellerF32Job::<_, BLOCK> {
+                kernel: self,
+                src: &src,
+                index,
+                out,
+                overflow: false,
+            };
+            dispatch(self.level, &mut job);
+            job.overflow
+        })
     }
 
     /// As [`Kernel::mueller_f32_into`], computed in f64 and each entry rounded to the nearest
@@ -356,12 +377,14 @@ impl<'a> Kernel<'a> {
     /// When the range exceeds the batch (or a per-element index).
     pub fn mueller_f64_rounded_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         start: usize,
         out: &mut [[f32; 16]],
     ) -> bool {
-        let src = Computed(BatchSource::new(batch, start, out.len()));
-        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out)
+        let index = self.index_at(start, out.len());
+        with_source!(batch, start, out.len(), |src| {
+            self.run_mueller::<_, _, BLOCK>(&src, index, out)
+        })
     }
 
     /// The scalar BRDF (sr⁻¹) and the DoLP for unpolarized input of elements
@@ -371,15 +394,16 @@ impl<'a> Kernel<'a> {
     /// When `brdf` and `dolp` differ in length or the range exceeds the batch.
     pub fn brdf_dolp_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         start: usize,
         brdf: &mut [f64],
         dolp: &mut [f64],
     ) {
         assert_eq!(brdf.len(), dolp.len(), "brdf and dolp lengths");
-        let src = Computed(BatchSource::new(batch, start, brdf.len()));
         let index = self.index_at(start, brdf.len());
-        self.run_brdf_dolp::<_, BLOCK, false>(&src, index, brdf, dolp, &mut []);
+        with_source!(batch, start, brdf.len(), |src| {
+            self.run_brdf_dolp::<_, BLOCK, false>(&src, index, brdf, dolp, &mut []);
+        })
     }
 
     /// As [`Kernel::brdf_dolp_into`], plus the AoLP (rad, in (−π/2, π/2], from the reflected
@@ -390,7 +414,7 @@ impl<'a> Kernel<'a> {
     /// When the three outputs differ in length or the range exceeds the batch.
     pub fn brdf_dolp_aolp_into(
         &self,
-        batch: &GeometryBatch<'_>,
+        batch: &impl Batch,
         start: usize,
         brdf: &mut [f64],
         dolp: &mut [f64],
@@ -398,9 +422,10 @@ impl<'a> Kernel<'a> {
     ) {
         assert_eq!(brdf.len(), dolp.len(), "brdf and dolp lengths");
         assert_eq!(brdf.len(), aolp.len(), "brdf and aolp lengths");
-        let src = Computed(BatchSource::new(batch, start, brdf.len()));
         let index = self.index_at(start, brdf.len());
-        self.run_brdf_dolp::<_, BLOCK, true>(&src, index, brdf, dolp, aolp);
+        with_source!(batch, start, brdf.len(), |src| {
+            self.run_brdf_dolp::<_, BLOCK, true>(&src, index, brdf, dolp, aolp);
+        })
     }
 
     /// The pBRDF at each geometry of a slice (already validated by construction).
@@ -784,7 +809,9 @@ trait Blocks {
         len: usize,
         needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
-    ) -> &'s Geom<N, M::F>;
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds;
 
     /// Element `i` by the one-geometry path.
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation;
@@ -801,7 +828,10 @@ impl<S: Source> Blocks for Computed<S> {
         len: usize,
         needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
-    ) -> &'s Geom<N, M::F> {
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds,
+    {
         load::<S, N>(&self.0, start, len, &mut scratch.input);
         block::geometry::<M, N, PAIRS>(scratch, needs);
         &scratch.geo
@@ -818,6 +848,148 @@ impl<S: Source> Blocks for Computed<S> {
     }
 }
 
+/// What the single-precision job needs of a source beyond [`Blocks`]: θN in f64 for D's
+/// refinement, and the f64 geometry of gathered elements.
+trait F32Blocks: Blocks {
+    /// The f64 input of lane `j` of the block whose f32 geometry `scratch` holds (angles, or
+    /// the two vectors), for [`F32Blocks::theta_n_f64`].
+    fn lane_input<const N: usize>(scratch: &GeomScratch<N, f32>, j: usize) -> [f64; 6];
+
+    /// θN (rad) in f64 (backend `M`) of one element's [`F32Blocks::lane_input`].
+    fn theta_n_f64<M: Math<F = f64>>(x: [f64; 6]) -> f64;
+
+    /// The f64 geometry stages of the elements at positions `pos` (at most N; the rest of the
+    /// block repeats the first) into `scratch`.
+    fn gathered_geometry<M: Math<F = f64>, const N: usize>(
+        &self,
+        pos: &[usize],
+        needs: AngleNeeds,
+        scratch: &mut GeomScratch<N>,
+    );
+}
+
+impl<S: Source> F32Blocks for Computed<S> {
+    #[inline(always)]
+    fn lane_input<const N: usize>(scratch: &GeomScratch<N, f32>, j: usize) -> [f64; 6] {
+        let b = &scratch.input;
+        [b.ti[j], b.pi[j], b.tr[j], b.pr[j], 0.0, 0.0]
+    }
+
+    #[inline(always)]
+    fn theta_n_f64<M: Math<F = f64>>(x: [f64; 6]) -> f64 {
+        // As the f64 path computes it: the reduction, the four sine/cosine pairs, the half
+        // vector and one arctangent, from the block's f64 angles.
+        let t = Trig::<f64>::new::<M>(x[0], x[1], x[2], x[3]);
+        angles::theta_n::<M>(&angles::half_vector::<M>(&t))
+    }
+
+    #[inline(always)]
+    fn gathered_geometry<M: Math<F = f64>, const N: usize>(
+        &self,
+        pos: &[usize],
+        needs: AngleNeeds,
+        scratch: &mut GeomScratch<N>,
+    ) {
+        let src = Gathered { src: &self.0, pos };
+        load::<_, N>(&src, 0, pos.len(), &mut scratch.input);
+        block::geometry::<M, N, true>(scratch, needs);
+    }
+}
+
+/// Direction vectors (the direction entry point, [`DirectionBatch`]) of elements
+/// `start .. start + len` of a batch.
+struct Directions<'a> {
+    w_i: &'a [[f64; 3]],
+    w_r: &'a [[f64; 3]],
+}
+
+impl<'a> Directions<'a> {
+    fn new(batch: &DirectionBatch<'a>, start: usize, len: usize) -> Self {
+        assert!(
+            start.checked_add(len).is_some_and(|end| end <= batch.len()),
+            "range {start}..{start}+{len} beyond a batch of {}",
+            batch.len()
+        );
+        let (w_i, w_r) = batch.directions();
+        Self {
+            w_i: &w_i[start..start + len],
+            w_r: &w_r[start..start + len],
+        }
+    }
+
+    /// The vectors of elements `pos(0) .. pos(N − 1)` into `dirs` (structure of arrays).
+    #[inline(always)]
+    fn load<const N: usize>(&self, pos: impl Fn(usize) -> usize, dirs: &mut [Lanes<N>; 6]) {
+        for j in 0..N {
+            let (a, b) = (self.w_i[pos(j)], self.w_r[pos(j)]);
+            [dirs[0][j], dirs[1][j], dirs[2][j]] = a;
+            [dirs[3][j], dirs[4][j], dirs[5][j]] = b;
+        }
+    }
+}
+
+impl Blocks for Directions<'_> {
+    #[inline(always)]
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
+        start: usize,
+        len: usize,
+        needs: AngleNeeds,
+        scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds,
+    {
+        self.load::<N>(|j| start + if j < len { j } else { 0 }, &mut scratch.dirs);
+        block::geometry_of_directions::<M, N, PAIRS>(scratch, needs);
+        &scratch.geo
+    }
+
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
+        let (ti, pi) = angles::direction_angles(self.w_i[i]);
+        let (tr, pr) = angles::direction_angles(self.w_r[i]);
+        index
+            .get(i, k.material)
+            .map_or_else(Evaluation::undefined, |n| {
+                k.material
+                    .evaluate_with_index(&Geometry::new_unchecked(ti, pi, tr, pr), n)
+            })
+    }
+}
+
+impl F32Blocks for Directions<'_> {
+    #[inline(always)]
+    fn lane_input<const N: usize>(scratch: &GeomScratch<N, f32>, j: usize) -> [f64; 6] {
+        std::array::from_fn(|c| scratch.dirs[c][j])
+    }
+
+    #[inline(always)]
+    fn theta_n_f64<M: Math<F = f64>>(x: [f64; 6]) -> f64 {
+        // θN = atan2(|s_xy|, s_z) of the half vector s = ŵ_i + ŵ_r of the f64 vectors.
+        let unit = |v: [f64; 3]| {
+            let inv = 1.0 / M::mla(v[0], v[0], M::mla(v[1], v[1], v[2] * v[2])).sqrt();
+            [v[0] * inv, v[1] * inv, v[2] * inv]
+        };
+        let (a, b) = (unit([x[0], x[1], x[2]]), unit([x[3], x[4], x[5]]));
+        let s = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+        M::atan2_pos(M::mla(s[0], s[0], s[1] * s[1]).sqrt(), s[2].max(0.0))
+    }
+
+    #[inline(always)]
+    fn gathered_geometry<M: Math<F = f64>, const N: usize>(
+        &self,
+        pos: &[usize],
+        needs: AngleNeeds,
+        scratch: &mut GeomScratch<N>,
+    ) {
+        self.load::<N>(
+            |j| pos[if j < pos.len() { j } else { 0 }],
+            &mut scratch.dirs,
+        );
+        block::geometry_of_directions::<M, N, true>(scratch, needs);
+    }
+}
+
 /// Explicit angle variables (the angle-variable entry point).
 struct Variables<'v>(&'v [AngleVariables]);
 
@@ -829,7 +1001,10 @@ impl Blocks for Variables<'_> {
         len: usize,
         _needs: AngleNeeds,
         scratch: &'s mut GeomScratch<N, M::F>,
-    ) -> &'s Geom<N, M::F> {
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds,
+    {
         let v: [AngleVariables; N] =
             std::array::from_fn(|j| self.0[start + if j < len { j } else { 0 }]);
         block::geometry_of_variables(&v, &mut scratch.geo);
@@ -936,7 +1111,10 @@ impl Blocks for PreparedRange<'_> {
         _len: usize,
         _needs: AngleNeeds,
         _scratch: &'s mut GeomScratch<N, M::F>,
-    ) -> &'s Geom<N, M::F> {
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds,
+    {
         // Only whole blocks are prepared: the jobs run prepared batches with N = BLOCK. (A
         // partial last block was padded when prepared, as `load` pads.)
         assert!(start.is_multiple_of(BLOCK), "prepared blocks of {BLOCK}");
@@ -1294,9 +1472,9 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
 /// flags are gathered, [`BLOCK`] at a time, into blocks of the f64 kernel (backend `M`), and
 /// those the f64 kernel flags in turn take the one-geometry path — every element ends where
 /// its accuracy holds, and most of the work stays in f32.
-struct MuellerF32Job<'k, 'a, 's, 'o, S, const N: usize> {
+struct MuellerF32Job<'k, 'a, 's, 'o, G, const N: usize> {
     kernel: &'k Kernel<'a>,
-    src: &'s Computed<S>,
+    src: &'s G,
     index: IndexSource<'k>,
     out: &'o mut [[f32; 16]],
     /// A finite entry beyond f32's range.
@@ -1326,19 +1504,15 @@ impl<S: Source> Source for Gathered<'_, S> {
     }
 }
 
-impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
+impl<G: F32Blocks, const N: usize> MuellerF32Job<'_, '_, '_, '_, G, N> {
     /// The pending elements through the f64 kernel (and, where it flags them, the one-geometry
     /// path), rounded to f32 into their places.
     #[inline(always)]
     fn flush<M: Math<F = f64>>(&mut self, w: &mut Wide<N>, cache: &mut SpectralCache) {
         let k = self.kernel;
         let pos = &w.pending[..w.len];
-        let src = Gathered {
-            src: &self.src.0,
-            pos,
-        };
-        load::<_, N>(&src, 0, pos.len(), &mut w.scratch.input);
-        block::geometry::<M, N, true>(&mut w.scratch, AngleNeeds::of(&k.params));
+        self.src
+            .gathered_geometry::<M, N>(pos, AngleNeeds::of(&k.params), &mut w.scratch);
         let idx = self
             .index
             .lanes_at::<N>(|j| pos[if j < pos.len() { j } else { 0 }], cache);
@@ -1360,13 +1534,12 @@ impl<S: Source, const N: usize> MuellerF32Job<'_, '_, '_, '_, S, N> {
 /// to f32: far down D's tail its relative error is `2bθN²` times θN's, which f32 cannot hold
 /// to 1e-5 beyond `bθN² ≈ 20` (docs/model.md §12, "Precision"), while D itself only
 /// multiplies the other terms, whose f32 accuracy does not degrade there. Only θN is
-/// recomputed, from the block's f64 angles (`input`) as the f64 path computes it — the
-/// reduction, the four sine/cosine pairs, the half vector and one arctangent — 4 lanes at a
-/// time; where even f64 is ill-conditioned, or D is below f32's comfortable range, the element
+/// recomputed in f64 from the block's input ([`F32Blocks::theta_n_f64`]: from angles as the
+/// f64 path computes it, from direction vectors by their half vector), 4 lanes at a time; where even f64 is ill-conditioned, or D is below f32's comfortable range, the element
 /// takes the f64 path (`fallback`).
 #[inline(always)]
-fn refine_d<M: Math<F = f64>, const N: usize>(
-    input: &BlockIn<N>,
+fn refine_d<M: Math<F = f64>, G: F32Blocks, const N: usize>(
+    scratch: &GeomScratch<N, f32>,
     len: usize,
     dist: crate::model::distribution::Distribution,
     d: &mut Lanes<N, f32>,
@@ -1404,18 +1577,17 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
         // would not inherit the kernel's target features: an `array::map` here once compiled
         // to calls of a software fma). The angles are the block's f64 input, reduced by the
         // f64 backend as on the f64 path.
-        let mut angles4 = [[0.0f64; L]; 4];
+        let mut input = [[0.0f64; L]; 6];
         for l in 0..L {
-            let j = group[l];
-            [angles4[0][l], angles4[1][l], angles4[2][l], angles4[3][l]] =
-                [input.ti[j], input.pi[j], input.tr[j], input.pr[j]];
+            let x = G::lane_input::<N>(scratch, group[l]);
+            for c in 0..6 {
+                input[c][l] = x[c];
+            }
         }
         let mut dv = [0.0f64; L];
         let mut ok = [false; L];
         for l in 0..L {
-            let [ti, pi, tr, pr] = [angles4[0][l], angles4[1][l], angles4[2][l], angles4[3][l]];
-            let t = Trig::<f64>::new::<M>(ti, pi, tr, pr);
-            let tn = angles::theta_n::<M>(&angles::half_vector::<M>(&t));
+            let tn = G::theta_n_f64::<M>(std::array::from_fn(|c| input[c][l]));
             dv[l] = dist.eval_with::<M>(tn);
             ok[l] = -dist.exponent(tn) <= <f64 as Thresholds>::D_EXPONENT_MAX
                 && dv[l] >= f64::from(<f32 as Thresholds>::TINY);
@@ -1431,7 +1603,7 @@ fn refine_d<M: Math<F = f64>, const N: usize>(
     }
 }
 
-impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
+impl<G: F32Blocks, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, G, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S1: Math<F = f32>>(&mut self) {
         let k = self.kernel;
@@ -1458,7 +1630,7 @@ impl<S: Source, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, S, N> {
             let idx = self.index.lanes_f32::<N>(start, len, k.ill32, &mut cache);
             block::front_q_d::<S1, N>(&k.params, geo, &idx, &mut front);
             let (d, tail, fb) = front.d_tail_mut();
-            refine_d::<M, N>(&scratch.input, len, k.params.distribution, d, tail, fb);
+            refine_d::<M, G, N>(&scratch, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
             let dst = &mut self.out[start..start + len];

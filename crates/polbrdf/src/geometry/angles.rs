@@ -92,6 +92,105 @@ impl<T: Real> Trig<T> {
     }
 }
 
+/// The shortest and longest direction vector the direction entry point accepts
+/// ([`crate::DirectionBatch`]): vectors are normalized, and within these bounds every square
+/// and product of their components stays in the normal range of f64 and of f32.
+pub const DIRECTION_LENGTH: (f64, f64) = (1e-15, 1e15);
+
+impl<T: Real> Trig<T> {
+    /// From two direction vectors `(x, y, z)` in the surface frame (z along the normal; any
+    /// length within [`DIRECTION_LENGTH`], each normalized here): `w_i` toward the source,
+    /// `w_r` toward the detector (docs/model.md §1, §9.11). A vector is the angles
+    /// `θ = atan2(√(x² + y²), z)`, `φ = atan2(y, x)` — `φ = 0` when `x = y = 0` — with no
+    /// elementary function on the way:
+    /// - `sinθ = √(x² + y²)/|w|`, `cosθ = z/|w|`, the azimuth's unit vector `a = (x, y)/√(x² + y²)`
+    ///   (`(1, 0)` at `x = y = 0`);
+    /// - `Δ = φr − φi` taken in (−π, π]: `|cos(Δ/2)| = |a_r + a_i|/2 = cos(Δ/2)`,
+    ///   `|sin(Δ/2)| = |a_r − a_i|/2` with the sign of `a_i × a_r` (only `sin(Δ/2)cos(Δ/2)`
+    ///   and the squares enter the model, which do not depend on Δ's multiple of 2π);
+    /// - `u = (θi − θr)/2`: `cos u = |p_i + p_r|/2`, where `p = (sinθ, cosθ)`, and
+    ///   `sin u = sin(θi − θr)/(2 cos u)` with `sin(θi − θr) = p_i × p_r = sinθi cosθr −
+    ///   cosθi sinθr`. (Not `|p_i − p_r|/2`: near the normal `cosθ ≈ 1` carries an absolute
+    ///   rounding of ε/2 that would leave `sin u` — and the half vector's horizontal part —
+    ///   at ε instead of ε·sinθ, above ΦN's rounding level, §9.3.)
+    ///
+    /// Each is a norm of a sum or difference of unit vectors, or a cross product, so a small
+    /// angle is as accurate as the vectors' components make it (no `1 − cos` cancellation). Also returns the
+    /// smallest `x² + y²` of the two normalized vectors that are not exactly along the normal
+    /// (1 when both are): near the subnormal range (or underflowed to 0) the azimuth's unit
+    /// vector loses digits, and the caller sends the element to a wider path.
+    #[inline(always)]
+    pub fn from_directions(w_i: [T; 3], w_r: [T; 3]) -> (Self, T) {
+        let half = T::of(0.5);
+        let polar = |w: [T; 3]| {
+            let inv = T::ONE / (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+            let (x, y, z) = (w[0] * inv, w[1] * inv, w[2] * inv);
+            let r2 = x * x + y * y;
+            let r = r2.sqrt();
+            let inv_r = T::ONE / if r > T::ZERO { r } else { T::ONE };
+            let a = if r > T::ZERO {
+                [x * inv_r, y * inv_r]
+            } else {
+                [T::ONE, T::ZERO]
+            };
+            // Off the normal, the squared length of the horizontal part (`x² + y²` can
+            // underflow to 0 while `(x, y)` is not 0); along it (exactly), 1.
+            let off = if (w[0] == T::ZERO) & (w[1] == T::ZERO) {
+                T::ONE
+            } else {
+                r2
+            };
+            (r, z, a, off)
+        };
+        let (si, ci, ai, r2i) = polar(w_i);
+        let (sr, cr, ar, r2r) = polar(w_r);
+        let cross = ai[0] * ar[1] - ai[1] * ar[0];
+        let (dx, dy) = (ar[0] - ai[0], ar[1] - ai[1]);
+        let (px, py) = (ar[0] + ai[0], ar[1] + ai[1]);
+        let sh = half * (dx * dx + dy * dy).sqrt();
+        let ch = half * (px * px + py * py).sqrt();
+        let (pu, pv) = (si + sr, ci + cr);
+        let cu = half * (pu * pu + pv * pv).sqrt();
+        // sin u = sin(θi − θr)/(2 cos u), with sin(θi − θr) = p_i × p_r.
+        let su = if cu > T::ZERO {
+            (si * cr - ci * sr) / (cu + cu)
+        } else {
+            T::ZERO
+        };
+        let t = Self {
+            si,
+            ci,
+            sr,
+            cr,
+            sh: if cross < T::ZERO { -sh } else { sh },
+            ch,
+            su,
+            cu,
+        };
+        (t, r2i.min(r2r))
+    }
+}
+
+/// The angles `(θ, φ)` (rad) of a direction vector, as [`Trig::from_directions`] defines them:
+/// `θ = atan2(√(x² + y²), z)`, `φ = atan2(y, x)`, `φ = 0` when `x = y = 0` (the standard
+/// library's functions; the one-geometry path of the direction entry point). A vector with
+/// `z > 0` is above the horizon, as on the vectorized path: where its θ would round to 90°
+/// (`z/|w| ≲ 6·10⁻¹⁷`) it is the largest f64 below π/2 (docs/model.md §9.11).
+pub fn direction_angles(w: [f64; 3]) -> (f64, f64) {
+    let r = w[0].hypot(w[1]);
+    let phi = if r > 0.0 { w[1].atan2(w[0]) } else { 0.0 };
+    let theta = r.atan2(w[2]);
+    let below_90 = std::f64::consts::FRAC_PI_2.next_down();
+    (
+        if w[2] > 0.0 {
+            theta.min(below_90)
+        } else {
+            theta
+        },
+        phi,
+    )
+}
+
 /// The half vector `s = w_i + w_r` (unnormalized) in the frame of the plane of incidence.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HalfVector<T = f64> {

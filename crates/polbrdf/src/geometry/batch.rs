@@ -116,6 +116,143 @@ impl<'a> GeometryBatch<'a> {
     }
 }
 
+/// Many geometries as two slices of direction vectors `(x, y, z)` in the surface frame (z along
+/// the normal): `w_i[j]` toward the source, `w_r[j]` toward the detector (docs/model.md §9.11),
+/// the form a renderer or a ray tracer has them in. The vectors need not be unit (each is
+/// normalized); a direction with `z ≤ 0` is at or below the horizon (a zero pBRDF). A vector
+/// stands for the angles `θ = atan2(√(x² + y²), z)`, `φ = atan2(y, x)` (`φ = 0` along the
+/// normal, [`crate::geometry::angles::direction_angles`]), and the engine's results are those of
+/// [`GeometryBatch`] at these angles, computed from the vectors without a sine or cosine.
+///
+/// ```
+/// use polbrdf::{DirectionBatch, Engine, GeometryBatch, MaterialSpec};
+/// let m = MaterialSpec::new(1.5, 10.0).build()?;
+/// let (w_i, w_r) = ([[0.5, 0.0, 0.75f64.sqrt()]], [[-0.5, 0.0, 0.75f64.sqrt()]]);
+/// let mut f = [[0.0; 16]];
+/// Engine::new(&m).mueller_into(&DirectionBatch::new(&w_i, &w_r)?, &mut f)?;
+/// // The same geometry as angles: 30° incidence, specular.
+/// let t = [30f64.to_radians()];
+/// let a = GeometryBatch::new(&t, &[0.0], &t, &[std::f64::consts::PI])?;
+/// let mut g = [[0.0; 16]];
+/// Engine::new(&m).mueller_into(&a, &mut g)?;
+/// assert!((f[0][0] - g[0][0]).abs() < 1e-12 * g[0][0]);
+/// # Ok::<(), polbrdf::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy)]
+pub struct DirectionBatch<'a> {
+    w_i: &'a [[f64; 3]],
+    w_r: &'a [[f64; 3]],
+}
+
+impl<'a> DirectionBatch<'a> {
+    /// Two equally long slices of direction vectors, each finite with a length in
+    /// [`crate::geometry::angles::DIRECTION_LENGTH`] (1e-15 to 1e15).
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`], or [`Error::InvalidDirection`] naming the slice (`w_i` or
+    /// `w_r`), the vector and its index.
+    pub fn new(w_i: &'a [[f64; 3]], w_r: &'a [[f64; 3]]) -> Result<Self> {
+        check_len("w_r", w_r.len(), w_i.len())?;
+        let ok = |w: &[f64; 3]| {
+            let n2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+            let (lo, hi) = crate::geometry::angles::DIRECTION_LENGTH;
+            (n2 >= lo * lo) & (n2 <= hi * hi)
+        };
+        for (name, ws) in [("w_i", w_i), ("w_r", w_r)] {
+            ws.par_chunks(CHUNK)
+                .enumerate()
+                .try_for_each(|(c, chunk)| {
+                    if chunk.iter().fold(true, |a, w| a & ok(w)) {
+                        return Ok(());
+                    }
+                    let j = chunk.iter().position(|w| !ok(w)).expect("a failed vector");
+                    Err(Error::InvalidDirection {
+                        name,
+                        value: chunk[j],
+                        index: Some(c * CHUNK + j),
+                    })
+                })?;
+        }
+        Ok(Self { w_i, w_r })
+    }
+
+    /// Number of geometries.
+    pub fn len(&self) -> usize {
+        self.w_i.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.w_i.is_empty()
+    }
+
+    /// The two slices (`w_i`, `w_r`), validated.
+    pub fn directions(&self) -> (&'a [[f64; 3]], &'a [[f64; 3]]) {
+        (self.w_i, self.w_r)
+    }
+
+    /// The `i`-th geometry as angles ([`crate::geometry::angles::direction_angles`]).
+    pub fn get(&self, i: usize) -> Geometry {
+        let (ti, pi) = crate::geometry::angles::direction_angles(self.w_i[i]);
+        let (tr, pr) = crate::geometry::angles::direction_angles(self.w_r[i]);
+        Geometry::new_unchecked(ti, pi, tr, pr)
+    }
+}
+
+/// A batch of geometries the engine evaluates: [`GeometryBatch`] (angles) or
+/// [`DirectionBatch`] (direction vectors). Sealed: the engine knows how to read each.
+pub trait Batch: Sync + sealed::Sealed {
+    /// Number of geometries.
+    fn len(&self) -> usize;
+    /// True when there are none.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// The `i`-th geometry as angles.
+    fn get(&self, i: usize) -> Geometry;
+    /// Which kind of batch this is (for the engine).
+    #[doc(hidden)]
+    fn input(&self) -> Input<'_>;
+}
+
+/// The two kinds of [`Batch`] (for the engine).
+#[doc(hidden)]
+#[derive(Debug, Clone, Copy)]
+pub enum Input<'a> {
+    Angles(GeometryBatch<'a>),
+    Directions(DirectionBatch<'a>),
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for super::GeometryBatch<'_> {}
+    impl Sealed for super::DirectionBatch<'_> {}
+}
+
+impl Batch for GeometryBatch<'_> {
+    fn len(&self) -> usize {
+        GeometryBatch::len(self)
+    }
+    fn get(&self, i: usize) -> Geometry {
+        GeometryBatch::get(self, i)
+    }
+    fn input(&self) -> Input<'_> {
+        Input::Angles(*self)
+    }
+}
+
+impl Batch for DirectionBatch<'_> {
+    fn len(&self) -> usize {
+        DirectionBatch::len(self)
+    }
+    fn get(&self, i: usize) -> Geometry {
+        DirectionBatch::get(self, i)
+    }
+    fn input(&self) -> Input<'_> {
+        Input::Directions(*self)
+    }
+}
+
 /// `Ok` when `got == expected`, else [`Error::LengthMismatch`] naming the slice.
 pub(crate) fn check_len(name: &'static str, got: usize, expected: usize) -> Result<()> {
     if got == expected {

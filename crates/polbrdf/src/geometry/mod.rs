@@ -8,5 +8,5 @@ pub mod direction;
 pub mod rusinkiewicz;
 
 pub use angles::AngleVariables;
-pub use batch::GeometryBatch;
+pub use batch::{Batch, DirectionBatch, GeometryBatch};
 pub use direction::{direction, Geometry};
