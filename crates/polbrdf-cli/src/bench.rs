@@ -11,6 +11,8 @@ use polbrdf::analysis::emission::{emissivities, emissivity, Emissivity};
 use polbrdf::analysis::facets::FacetRule;
 use polbrdf::batch;
 use polbrdf::engine::{elementary_into, Elementary, Engine, IndexColumns, Kernel};
+use polbrdf::geometry::direction;
+use polbrdf::DirectionBatch;
 use polbrdf::Geometry;
 use polbrdf::GeometryBatch;
 use rayon::prelude::*;
@@ -225,6 +227,10 @@ struct Run {
     mueller_s: f64,
     /// Full Mueller in single precision (`Engine::mueller_f32_into`).
     mueller_f32_s: f64,
+    /// Full Mueller from the same geometries as direction vectors (`DirectionBatch`), f64 and
+    /// f32.
+    directions_s: f64,
+    directions_f32_s: f64,
     brdf_dolp_s: f64,
     mueller_sum: f64,
     brdf_sum: f64,
@@ -236,6 +242,7 @@ fn run_with(
     repeats: usize,
     material: &polbrdf::Material,
     batch: &GeometryBatch<'_>,
+    directions: &DirectionBatch<'_>,
 ) -> Result<Run, CliError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -260,6 +267,23 @@ fn run_with(
             black_box(&mut out32);
         })
     });
+    let directions_s = pool.install(|| {
+        median_seconds(repeats, || {
+            engine
+                .mueller_into(directions, &mut out)
+                .expect("lengths match");
+            black_box(&mut out);
+        })
+    });
+    let directions_f32_s = pool.install(|| {
+        median_seconds(repeats, || {
+            engine
+                .mueller_f32_into(directions, &mut out32)
+                .expect("lengths match, paint within f32");
+            black_box(&mut out32);
+        })
+    });
+    // The checksum is the angle route's: `out` is refilled from the angles last.
     let brdf_dolp_s = pool.install(|| {
         median_seconds(repeats, || {
             batch::brdf_dolp_into(material, batch, &mut brdf, &mut dolp).expect("lengths match");
@@ -270,8 +294,13 @@ fn run_with(
         threads,
         mueller_s,
         mueller_f32_s,
+        directions_s,
+        directions_f32_s,
         brdf_dolp_s,
-        mueller_sum: out.iter().flatten().sum(),
+        mueller_sum: {
+            batch::mueller_into(material, batch, &mut out).expect("lengths match");
+            out.iter().flatten().sum()
+        },
         brdf_sum: brdf.iter().sum(),
         dolp_sum: dolp.iter().sum(),
     })
@@ -557,6 +586,9 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let tr = rng.uniform(0.0, 89.9f64.to_radians(), n);
     let pr = rng.uniform(0.0, 360f64.to_radians(), n);
     let batch = GeometryBatch::new(&ti, &pi, &tr, &pr).map_err(CliError::Model)?;
+    let w_i: Vec<_> = ti.iter().zip(&pi).map(|(t, p)| direction(*t, *p)).collect();
+    let w_r: Vec<_> = tr.iter().zip(&pr).map(|(t, p)| direction(*t, *p)).collect();
+    let directions = DirectionBatch::new(&w_i, &w_r).map_err(CliError::Model)?;
 
     let mut counts = vec![1];
     if threads != 1 {
@@ -564,7 +596,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     }
     let runs = counts
         .iter()
-        .map(|&t| run_with(t, args.repeats, &material, &batch))
+        .map(|&t| run_with(t, args.repeats, &material, &batch, &directions))
         .collect::<Result<Vec<_>, _>>()?;
     let bandwidth = write_bandwidth(threads, args.repeats, n)?;
     let elementary = elementary_ns(args.repeats, Kernel::new(&material).level());
@@ -603,6 +635,8 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     "threads": r.threads,
                     "mueller_evals_per_s": per_s(r.mueller_s),
                     "mueller_f32_evals_per_s": per_s(r.mueller_f32_s),
+                    "mueller_directions_evals_per_s": per_s(r.directions_s),
+                    "mueller_directions_f32_evals_per_s": per_s(r.directions_f32_s),
                     "brdf_dolp_evals_per_s": per_s(r.brdf_dolp_s),
                     "mueller_seconds": r.mueller_s,
                     "brdf_dolp_seconds": r.brdf_dolp_s,
@@ -706,15 +740,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         println!("CPU: {cpu} ({all} logical CPUs); kernel SIMD level: {simd}");
         println!();
         println!(
-            "{:<10} {:>22} {:>22} {:>22}",
-            "threads", "full Mueller", "full Mueller, f32", "BRDF + DoLP"
+            "{:<10} {:>22} {:>22} {:>22} {:>22} {:>22}",
+            "threads",
+            "full Mueller",
+            "full Mueller, f32",
+            "from vectors",
+            "from vectors, f32",
+            "BRDF + DoLP"
         );
         for r in &runs {
             println!(
-                "{:<10} {:>15.2} M/s   {:>15.2} M/s   {:>15.2} M/s",
+                "{:<10} {:>15.2} M/s   {:>15.2} M/s   {:>15.2} M/s   {:>15.2} M/s   {:>15.2} M/s",
                 r.threads,
                 per_s(r.mueller_s) / 1e6,
                 per_s(r.mueller_f32_s) / 1e6,
+                per_s(r.directions_s) / 1e6,
+                per_s(r.directions_f32_s) / 1e6,
                 per_s(r.brdf_dolp_s) / 1e6
             );
         }
