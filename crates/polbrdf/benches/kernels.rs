@@ -5,13 +5,20 @@
 //! - `reference_*`: the straightforward scalar path (`Geometry::angle_variables`, the Fresnel
 //!   amplitudes with the Jones and Mueller matrices, `Material::evaluate`);
 //! - `kernel_*`: the vectorized batch kernel (`polbrdf::engine`), at each SIMD level this CPU
-//!   supports (an unsupported level measures nothing);
+//!   supports (an unsupported level measures nothing): in f64 and f32, from angles and from
+//!   direction vectors, for `paint` and for the peer benchmark's conductor
+//!   (`scripts/bench-peers`: n = 1.2, k = 7, σ = atan 0.2, shadowing off, whose narrow lobe
+//!   sends about a fifth of the f32 elements through D's f64 refinement). On an AVX-512 CPU
+//!   the `avx2+fma` rows show what an AVX2-only CPU of the same core would do;
 //! - `single_*`: the latency of one evaluation.
 
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
 use polbrdf::engine::{Kernel, SimdLevel};
-use polbrdf::{AngleVariables, Geometry, GeometryBatch, Jones, Material, Mueller};
+use polbrdf::geometry::direction;
+use polbrdf::{
+    AngleVariables, DirectionBatch, Geometry, GeometryBatch, Jones, Material, MaterialSpec, Mueller,
+};
 
 fn main() {
     divan::main();
@@ -22,8 +29,21 @@ const LEVELS: [&str; 3] = ["portable", "avx2+fma", "avx512"];
 
 struct Data {
     material: Material,
+    /// The peer benchmark's Beckmann-like conductor (`scripts/bench_peers.py`).
+    conductor: Material,
     cols: [Vec<f64>; 4],
+    /// The same geometries as unit vectors (`w_i`, `w_r`).
+    dirs: [Vec<[f64; 3]>; 2],
     geometries: Vec<Geometry>,
+}
+
+impl Data {
+    fn material(&self, name: &str) -> &Material {
+        match name {
+            "conductor" => &self.conductor,
+            _ => &self.material,
+        }
+    }
 }
 
 fn data() -> Data {
@@ -48,9 +68,26 @@ fn data() -> Data {
         geometries.iter().map(|g| g.theta_r()).collect(),
         geometries.iter().map(|g| g.phi_r()).collect(),
     ];
+    let dirs = [
+        geometries
+            .iter()
+            .map(|g| direction(g.theta_i(), g.phi_i()))
+            .collect(),
+        geometries
+            .iter()
+            .map(|g| direction(g.theta_r(), g.phi_r()))
+            .collect(),
+    ];
+    let conductor = MaterialSpec {
+        k: 7.0,
+        shadowing: false,
+        ..MaterialSpec::new(1.2, 0.2f64.atan().to_degrees())
+    };
     Data {
         material: polbrdf::preset("paint").unwrap().build().unwrap(),
+        conductor: conductor.build().unwrap(),
         cols,
+        dirs,
         geometries,
     }
 }
@@ -108,16 +145,70 @@ fn reference_pbrdf(bencher: Bencher<'_, '_>) {
 }
 
 /// The full pBRDF (16 entries) through the kernel, one thread.
-#[divan::bench(args = LEVELS)]
-fn kernel_mueller(bencher: Bencher<'_, '_>, name: &str) {
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
     let Some(level) = level(name) else { return };
     let d = data();
     let [ti, pi, tr, pr] = &d.cols;
     let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
-    let k = Kernel::with_level(&d.material, level).unwrap();
+    let k = Kernel::with_level(d.material(material), level).unwrap();
     let mut out = vec![[0.0; 16]; N];
     bencher.counter(ItemsCount::new(N)).bench_local(|| {
         k.mueller_into(black_box(&batch), 0, &mut out);
+        black_box(&mut out);
+    });
+}
+
+/// Every level for each material of [`Data::material`].
+const LEVEL_MATERIALS: [(&str, &str); 6] = [
+    ("portable", "paint"),
+    ("avx2+fma", "paint"),
+    ("avx512", "paint"),
+    ("portable", "conductor"),
+    ("avx2+fma", "conductor"),
+    ("avx512", "conductor"),
+];
+
+/// The full pBRDF in single precision (the f32 kernel, `Kernel::mueller_f32_into`), one
+/// thread.
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller_f32(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let [ti, pi, tr, pr] = &d.cols;
+    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    let mut out = vec![[0.0f32; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.mueller_f32_into(black_box(&batch), 0, &mut out);
+        black_box(&mut out);
+    });
+}
+
+/// The full pBRDF from direction vectors (`DirectionBatch`), f64, one thread.
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller_directions(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let batch = DirectionBatch::new(&d.dirs[0], &d.dirs[1]).unwrap();
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    let mut out = vec![[0.0; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.mueller_into(black_box(&batch), 0, &mut out);
+        black_box(&mut out);
+    });
+}
+
+/// The full pBRDF from direction vectors in single precision, one thread.
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller_directions_f32(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let batch = DirectionBatch::new(&d.dirs[0], &d.dirs[1]).unwrap();
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    let mut out = vec![[0.0f32; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.mueller_f32_into(black_box(&batch), 0, &mut out);
         black_box(&mut out);
     });
 }

@@ -601,9 +601,10 @@ fn prepared_geometry_gives_exactly_the_unprepared_results() {
 
 #[test]
 fn streamed_outputs_equal_cached_ones_bit_for_bit() {
-    // Outputs of at least STREAM_MIN elements go out with non-temporal stores (through a
-    // staging block); smaller ones are transposed straight into the output. Both, and a
-    // misaligned destination, give the same bits.
+    // With streaming, outputs of at least STREAM_MIN elements go out with non-temporal stores
+    // (through a staging block); otherwise they are transposed straight into the output.
+    // Both, through the kernel and the engine, and a misaligned destination, give the same
+    // bits.
     let m = polbrdf::preset("gold").unwrap().build().unwrap();
     let mut rng = Rng::new(13);
     let n = batch::STREAM_MIN + 37;
@@ -618,11 +619,14 @@ fn streamed_outputs_equal_cached_ones_bit_for_bit() {
         .streaming(true)
         .mueller_into(&batch, 0, &mut streamed);
     assert!(cached == streamed, "streamed vs cached");
-    let mut engine = vec![[f64::NAN; 16]; n];
-    polbrdf::engine::Engine::new(&m)
-        .mueller_into(&batch, &mut engine)
-        .unwrap();
-    assert!(cached == engine, "engine (streamed) vs kernel");
+    for stream in [false, true] {
+        let mut engine = vec![[f64::NAN; 16]; n];
+        polbrdf::engine::Engine::new(&m)
+            .streaming(stream)
+            .mueller_into(&batch, &mut engine)
+            .unwrap();
+        assert!(cached == engine, "engine (streaming {stream}) vs kernel");
+    }
     // A destination that is not 16-byte aligned takes the plain stores.
     let mut flat = vec![f64::NAN; 16 * 100 + 1];
     let (_, rest) = flat.split_at_mut(1);

@@ -22,8 +22,8 @@ fn chunk_len(n: usize) -> usize {
     per.clamp(8 * BLOCK, CHUNK)
 }
 
-/// Full-Mueller outputs of at least this many elements (8 MB in f64) bypass the caches
-/// ([`Kernel::streaming`]).
+/// With [`Engine::streaming`], full-Mueller outputs of at least this many elements (8 MB in
+/// f64) bypass the caches ([`Kernel::streaming`]).
 pub const STREAM_MIN: usize = 1 << 16;
 
 /// The floating-point format of the results (docs/model.md §12, "Precision"). Every result is
@@ -97,6 +97,8 @@ pub struct Engine<'a> {
     kernel: Kernel<'a>,
     /// The length of a per-element index or of the wavelengths, and its name for messages.
     index_len: Option<(usize, &'static str)>,
+    /// Non-temporal stores for outputs of at least [`STREAM_MIN`] elements.
+    stream: bool,
 }
 
 impl<'a> Engine<'a> {
@@ -105,7 +107,20 @@ impl<'a> Engine<'a> {
         Self {
             kernel: Kernel::new(material),
             index_len: None,
+            stream: false,
         }
+    }
+
+    /// With `on`, full-Mueller outputs of at least [`STREAM_MIN`] elements are written with
+    /// non-temporal stores ([`Kernel::streaming`]), which bypass the caches. Off by default:
+    /// the stores go through a staging block, and on the machine measured (a Zen 4 class
+    /// AVX-512 host with 22–29 GB/s of write bandwidth) that cost more than the traffic it
+    /// saves — float64 full Mueller on 10⁶ geometries ran 1.2–1.4× faster on one thread without
+    /// it (docs/model.md §12). Worth trying only where the output's write is memory-bound (many
+    /// cores sharing one memory). The results are the same bits either way.
+    pub fn streaming(mut self, on: bool) -> Self {
+        self.stream = on;
+        self
     }
 
     /// Element `j` of every batch evaluated with index `index.get(j)` (the batch must be as
@@ -114,6 +129,7 @@ impl<'a> Engine<'a> {
         Self {
             index_len: Some((index.len(), "n")),
             kernel: self.kernel.with_index(index),
+            ..self
         }
     }
 
@@ -129,6 +145,7 @@ impl<'a> Engine<'a> {
         Ok(Self {
             index_len: Some((wavelengths_um.len(), "wavelength_um")),
             kernel: self.kernel.with_wavelengths(wavelengths_um)?,
+            ..self
         })
     }
 
@@ -152,8 +169,11 @@ impl<'a> Engine<'a> {
     pub fn mueller_into(&self, batch: &impl Batch, out: &mut [[f64; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
-        // Outputs far beyond the caches (≥ 8 MB) are written with non-temporal stores.
-        let kernel = self.kernel.clone().streaming(out.len() >= STREAM_MIN);
+        // With `streaming`, outputs far beyond the caches (≥ 8 MB) bypass them.
+        let kernel = self
+            .kernel
+            .clone()
+            .streaming(self.stream && out.len() >= STREAM_MIN);
         let len = chunk_len(out.len());
         out.par_chunks_mut(len)
             .enumerate()
@@ -173,8 +193,11 @@ impl<'a> Engine<'a> {
     pub fn mueller_f32_into(&self, batch: &impl Batch, out: &mut [[f32; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
-        // The same bytes as an f64 output of half the length: stream beyond 8 MB.
-        let kernel = self.kernel.clone().streaming(out.len() >= 2 * STREAM_MIN);
+        // With `streaming`: the same bytes as an f64 output of half the length, beyond 8 MB.
+        let kernel = self
+            .kernel
+            .clone()
+            .streaming(self.stream && out.len() >= 2 * STREAM_MIN);
         let len = chunk_len(out.len());
         let overflow = out
             .par_chunks_mut(len)
