@@ -24,7 +24,6 @@ use polbrdf::analysis::emission::{emissivities, Emissivity};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{TableSky, ZenithProfile};
 use polbrdf::analysis::thermal;
-use polbrdf::engine::batch::STREAM_MIN;
 use polbrdf::engine::{Kernel, Precision};
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
@@ -769,16 +768,15 @@ impl Store<f32> for StoreF32 {
 
 /// Fills `rows` (one row-major 4×4 per geometry) in parallel chunks of [`CHUNK`]: `chunk(c,
 /// rows)` evaluates chunk `c` through the serial kernel (true when an entry overflowed f32),
-/// with non-temporal stores for outputs beyond 8 MB as the batch API does.
+/// with plain stores as the batch API does by default (`Engine::streaming`).
 fn mueller_chunks<T: Send>(
     rows: &mut [[T; 16]],
-    chunk: impl Fn(usize, bool, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
+    chunk: impl Fn(usize, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
 ) -> Result<(), polbrdf::Error> {
-    let stream = size_of_val(rows) >= 16 * 8 * STREAM_MIN;
     let overflow = rows
         .par_chunks_mut(CHUNK)
         .enumerate()
-        .map(|(c, rows)| chunk(c, stream, rows))
+        .map(|(c, rows)| chunk(c, rows))
         .try_reduce(|| false, |a, b| Ok(a | b))?;
     if overflow {
         return Err(polbrdf::engine::batch::f32_overflow());
@@ -795,10 +793,10 @@ fn mueller_rows<T: Send>(
     rows: &mut [[T; 16]],
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
-    mueller_chunks(rows, |c, stream, rows| {
+    mueller_chunks(rows, |c, rows| {
         chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
             with_engine(m, wl, c * CHUNK, rows.len(), |e| {
-                Ok(store.store(&e.kernel().clone().streaming(stream), b, rows))
+                Ok(store.store(e.kernel(), b, rows))
             })
         })
     })
@@ -814,7 +812,7 @@ fn direction_rows<T: Send>(
     rows: &mut [[T; 16]],
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
-    mueller_chunks(rows, |c, stream, rows| {
+    mueller_chunks(rows, |c, rows| {
         let (start, len) = (c * CHUNK, rows.len());
         let (mut bi, mut br) = ([[0.0f64; 3]; CHUNK], [[0.0f64; 3]; CHUNK]);
         let (si, sr) = (
@@ -832,7 +830,7 @@ fn direction_rows<T: Send>(
             other => other,
         })?;
         with_engine(m, wl, start, len, |e| {
-            Ok(store.store(&e.kernel().clone().streaming(stream), &batch, rows))
+            Ok(store.store(e.kernel(), &batch, rows))
         })
     })
 }
