@@ -839,13 +839,22 @@ impl<S: Source> Blocks for Computed<S> {
 
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
         let [ti, pi, tr, pr] = self.0.get(i);
-        index
-            .get(i, k.material)
-            .map_or_else(Evaluation::undefined, |n| {
-                k.material
-                    .evaluate_with_index(&Geometry::new_unchecked(ti + 0.0, pi, tr + 0.0, pr), n)
-            })
+        one_geometry(
+            k,
+            index,
+            i,
+            Geometry::new_unchecked(ti + 0.0, pi, tr + 0.0, pr),
+        )
     }
+}
+
+/// Element `i` (at geometry `g`) by the one-geometry path, with its index.
+fn one_geometry(k: &Kernel<'_>, index: IndexSource<'_>, i: usize, g: Geometry) -> Evaluation {
+    index
+        .get(i, k.material)
+        .map_or_else(Evaluation::undefined, |n| {
+            k.material.evaluate_with_index(&g, n)
+        })
 }
 
 /// What the single-precision job needs of a source beyond [`Blocks`]: θN in f64 for D's
@@ -948,12 +957,7 @@ impl Blocks for Directions<'_> {
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
         let (ti, pi) = angles::direction_angles(self.w_i[i]);
         let (tr, pr) = angles::direction_angles(self.w_r[i]);
-        index
-            .get(i, k.material)
-            .map_or_else(Evaluation::undefined, |n| {
-                k.material
-                    .evaluate_with_index(&Geometry::new_unchecked(ti, pi, tr, pr), n)
-            })
+        one_geometry(k, index, i, Geometry::new_unchecked(ti, pi, tr, pr))
     }
 }
 
@@ -1126,12 +1130,7 @@ impl Blocks for PreparedRange<'_> {
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
         let g = &self.p.blocks[self.first + i / BLOCK];
         let a = |c: usize| g.angles[c][i % BLOCK];
-        index
-            .get(i, k.material)
-            .map_or_else(Evaluation::undefined, |n| {
-                k.material
-                    .evaluate_with_index(&Geometry::new_unchecked(a(0), a(1), a(2), a(3)), n)
-            })
+        one_geometry(k, index, i, Geometry::new_unchecked(a(0), a(1), a(2), a(3)))
     }
 }
 
