@@ -30,7 +30,6 @@ import sys
 import time
 
 import numpy as np
-
 import polbrdf
 
 # A conductor (aluminium near 0.6 µm) with a Beckmann lobe.

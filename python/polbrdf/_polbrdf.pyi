@@ -15,8 +15,8 @@ __all__ = [
     "evaluate_flat",
     "fit_flat",
     "index_flat",
-    "mueller_flat",
     "mueller_directions_flat",
+    "mueller_flat",
     "planck_flat",
     "radiance_flat",
 ]
