@@ -249,46 +249,38 @@ fn run_with(
         .build()
         .map_err(|e| CliError::Invalid(format!("--threads = {threads}: {e}")))?;
     let n = batch.len();
-    let mut out = vec![[0.0; 16]; n];
-    let (mut brdf, mut dolp) = (vec![0.0; n], vec![0.0; n]);
-    let mueller_s = pool.install(|| {
-        median_seconds(repeats, || {
-            batch::mueller_into(material, batch, &mut out).expect("lengths match");
-            black_box(&mut out);
-        })
-    });
-    let mut out32 = vec![[0.0f32; 16]; n];
+    let time = |f: &mut (dyn FnMut() + Send)| pool.install(|| median_seconds(repeats, f));
     let engine = Engine::new(material);
-    let mueller_f32_s = pool.install(|| {
-        median_seconds(repeats, || {
-            engine
-                .mueller_f32_into(batch, &mut out32)
-                .expect("lengths match, paint within f32");
-            black_box(&mut out32);
-        })
+    let mut out = vec![[0.0; 16]; n];
+    let mut out32 = vec![[0.0f32; 16]; n];
+    let (mut brdf, mut dolp) = (vec![0.0; n], vec![0.0; n]);
+    let mueller_s = time(&mut || {
+        batch::mueller_into(material, batch, &mut out).expect("lengths match");
+        black_box(&mut out);
     });
-    let directions_s = pool.install(|| {
-        median_seconds(repeats, || {
-            engine
-                .mueller_into(directions, &mut out)
-                .expect("lengths match");
-            black_box(&mut out);
-        })
+    // The checksum is the angle route's, before the direction route reuses `out`.
+    let mueller_sum = out.iter().flatten().sum();
+    let mueller_f32_s = time(&mut || {
+        engine
+            .mueller_f32_into(batch, &mut out32)
+            .expect("lengths match, paint within f32");
+        black_box(&mut out32);
     });
-    let directions_f32_s = pool.install(|| {
-        median_seconds(repeats, || {
-            engine
-                .mueller_f32_into(directions, &mut out32)
-                .expect("lengths match, paint within f32");
-            black_box(&mut out32);
-        })
+    let directions_s = time(&mut || {
+        engine
+            .mueller_into(directions, &mut out)
+            .expect("lengths match");
+        black_box(&mut out);
     });
-    // The checksum is the angle route's: `out` is refilled from the angles last.
-    let brdf_dolp_s = pool.install(|| {
-        median_seconds(repeats, || {
-            batch::brdf_dolp_into(material, batch, &mut brdf, &mut dolp).expect("lengths match");
-            black_box((&mut brdf, &mut dolp));
-        })
+    let directions_f32_s = time(&mut || {
+        engine
+            .mueller_f32_into(directions, &mut out32)
+            .expect("lengths match, paint within f32");
+        black_box(&mut out32);
+    });
+    let brdf_dolp_s = time(&mut || {
+        batch::brdf_dolp_into(material, batch, &mut brdf, &mut dolp).expect("lengths match");
+        black_box((&mut brdf, &mut dolp));
     });
     Ok(Run {
         threads,
@@ -297,10 +289,7 @@ fn run_with(
         directions_s,
         directions_f32_s,
         brdf_dolp_s,
-        mueller_sum: {
-            batch::mueller_into(material, batch, &mut out).expect("lengths match");
-            out.iter().flatten().sum()
-        },
+        mueller_sum,
         brdf_sum: brdf.iter().sum(),
         dolp_sum: dolp.iter().sum(),
     })

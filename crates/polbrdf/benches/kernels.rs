@@ -17,7 +17,8 @@ use divan::{black_box, Bencher};
 use polbrdf::engine::{Kernel, SimdLevel};
 use polbrdf::geometry::direction;
 use polbrdf::{
-    AngleVariables, DirectionBatch, Geometry, GeometryBatch, Jones, Material, MaterialSpec, Mueller,
+    AngleVariables, Batch, DirectionBatch, Geometry, GeometryBatch, Jones, Material, MaterialSpec,
+    Mueller,
 };
 
 fn main() {
@@ -46,7 +47,13 @@ impl Data {
     }
 }
 
-fn data() -> Data {
+/// The benchmarks' data, made once.
+fn data() -> &'static Data {
+    static DATA: std::sync::LazyLock<Data> = std::sync::LazyLock::new(make_data);
+    &DATA
+}
+
+fn make_data() -> Data {
     let mut state = 2024u64;
     let mut next = move || {
         // SplitMix64, uniform in [0, 1)
@@ -144,21 +151,6 @@ fn reference_pbrdf(bencher: Bencher<'_, '_>) {
     });
 }
 
-/// The full pBRDF (16 entries) through the kernel, one thread.
-#[divan::bench(args = LEVEL_MATERIALS)]
-fn kernel_mueller(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
-    let Some(level) = level(name) else { return };
-    let d = data();
-    let [ti, pi, tr, pr] = &d.cols;
-    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
-    let k = Kernel::with_level(d.material(material), level).unwrap();
-    let mut out = vec![[0.0; 16]; N];
-    bencher.counter(ItemsCount::new(N)).bench_local(|| {
-        k.mueller_into(black_box(&batch), 0, &mut out);
-        black_box(&mut out);
-    });
-}
-
 /// Every level for each material of [`Data::material`].
 const LEVEL_MATERIALS: [(&str, &str); 6] = [
     ("portable", "paint"),
@@ -169,47 +161,65 @@ const LEVEL_MATERIALS: [(&str, &str); 6] = [
     ("avx512", "conductor"),
 ];
 
+/// One thread of full-Mueller evaluations of `batch` into a reused output of `T` (`run`: a
+/// kernel method), for the level and material of `args`.
+fn full_mueller<B: Batch, T: Copy>(
+    bencher: Bencher<'_, '_>,
+    (name, material): (&str, &str),
+    batch: impl Fn(&'static Data) -> B,
+    zero: T,
+    run: impl Fn(&Kernel<'_>, &B, &mut [[T; 16]]),
+) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let batch = batch(d);
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    let mut out = vec![[zero; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        run(&k, black_box(&batch), &mut out);
+        black_box(&mut out);
+    });
+}
+
+fn angles(d: &'static Data) -> GeometryBatch<'static> {
+    let [ti, pi, tr, pr] = &d.cols;
+    GeometryBatch::new(ti, pi, tr, pr).unwrap()
+}
+
+fn vectors(d: &'static Data) -> DirectionBatch<'static> {
+    DirectionBatch::new(&d.dirs[0], &d.dirs[1]).unwrap()
+}
+
+/// The full pBRDF (16 entries) through the kernel, one thread.
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller(bencher: Bencher<'_, '_>, args: (&str, &str)) {
+    full_mueller(bencher, args, angles, 0.0, |k, b, o| {
+        k.mueller_into(b, 0, o)
+    });
+}
+
 /// The full pBRDF in single precision (the f32 kernel, `Kernel::mueller_f32_into`), one
 /// thread.
 #[divan::bench(args = LEVEL_MATERIALS)]
-fn kernel_mueller_f32(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
-    let Some(level) = level(name) else { return };
-    let d = data();
-    let [ti, pi, tr, pr] = &d.cols;
-    let batch = GeometryBatch::new(ti, pi, tr, pr).unwrap();
-    let k = Kernel::with_level(d.material(material), level).unwrap();
-    let mut out = vec![[0.0f32; 16]; N];
-    bencher.counter(ItemsCount::new(N)).bench_local(|| {
-        k.mueller_f32_into(black_box(&batch), 0, &mut out);
-        black_box(&mut out);
+fn kernel_mueller_f32(bencher: Bencher<'_, '_>, args: (&str, &str)) {
+    full_mueller(bencher, args, angles, 0.0f32, |k, b, o| {
+        k.mueller_f32_into(b, 0, o);
     });
 }
 
 /// The full pBRDF from direction vectors (`DirectionBatch`), f64, one thread.
 #[divan::bench(args = LEVEL_MATERIALS)]
-fn kernel_mueller_directions(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
-    let Some(level) = level(name) else { return };
-    let d = data();
-    let batch = DirectionBatch::new(&d.dirs[0], &d.dirs[1]).unwrap();
-    let k = Kernel::with_level(d.material(material), level).unwrap();
-    let mut out = vec![[0.0; 16]; N];
-    bencher.counter(ItemsCount::new(N)).bench_local(|| {
-        k.mueller_into(black_box(&batch), 0, &mut out);
-        black_box(&mut out);
+fn kernel_mueller_directions(bencher: Bencher<'_, '_>, args: (&str, &str)) {
+    full_mueller(bencher, args, vectors, 0.0, |k, b, o| {
+        k.mueller_into(b, 0, o)
     });
 }
 
 /// The full pBRDF from direction vectors in single precision, one thread.
 #[divan::bench(args = LEVEL_MATERIALS)]
-fn kernel_mueller_directions_f32(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
-    let Some(level) = level(name) else { return };
-    let d = data();
-    let batch = DirectionBatch::new(&d.dirs[0], &d.dirs[1]).unwrap();
-    let k = Kernel::with_level(d.material(material), level).unwrap();
-    let mut out = vec![[0.0f32; 16]; N];
-    bencher.counter(ItemsCount::new(N)).bench_local(|| {
-        k.mueller_f32_into(black_box(&batch), 0, &mut out);
-        black_box(&mut out);
+fn kernel_mueller_directions_f32(bencher: Bencher<'_, '_>, args: (&str, &str)) {
+    full_mueller(bencher, args, vectors, 0.0f32, |k, b, o| {
+        k.mueller_f32_into(b, 0, o);
     });
 }
 

@@ -115,8 +115,8 @@ impl<'a> Engine<'a> {
     /// non-temporal stores ([`Kernel::streaming`]), which bypass the caches. Off by default:
     /// the stores go through a staging block, and on the machine measured (a Zen 4 class
     /// AVX-512 host with 22–29 GB/s of write bandwidth) that cost more than the traffic it
-    /// saves — float64 full Mueller on 10⁶ geometries ran 1.2–1.4× faster on one thread without
-    /// it (docs/model.md §12). Worth trying only where the output's write is memory-bound (many
+    /// saves — float64 full Mueller on 10⁶ geometries ran 1.5–1.6× faster on one thread and
+    /// 1.23–1.26× on two without it (docs/model.md §12). Worth trying only where the output's write is memory-bound (many
     /// cores sharing one memory). The results are the same bits either way.
     pub fn streaming(mut self, on: bool) -> Self {
         self.stream = on;
