@@ -10,6 +10,7 @@ mod emission;
 mod golden;
 mod kernel;
 mod limits;
+mod planes;
 mod precision;
 mod properties;
 mod spectral;

@@ -3,6 +3,7 @@
 //! [`Kernel`] on a rayon worker.
 
 use crate::engine::kernel::{IndexColumns, Kernel, Prepared, BLOCK};
+use crate::engine::planes::Planes;
 use crate::error::Result;
 use crate::geometry::batch::{check_len, Batch};
 use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
@@ -20,6 +21,82 @@ fn chunk_len(n: usize) -> usize {
     let threads = rayon::current_num_threads().max(1);
     let per = n.div_ceil(4 * threads).div_ceil(BLOCK) * BLOCK;
     per.clamp(8 * BLOCK, CHUNK)
+}
+
+/// Batches of at most this many elements run on the calling thread: below it, handing chunks to
+/// rayon's workers costs more than it saves (measured on 2 threads: at 1024 elements the
+/// parallel path ran at 30–51 M/s against the serial kernel's 50; at 4096 it won, 55–58 against
+/// 50–53).
+pub const SERIAL_MAX: usize = 2048;
+
+/// Outputs (and inputs) that split into disjoint parts by element, for the parallel driver
+/// [`for_chunks`].
+trait Split: Sized + Send {
+    fn len(&self) -> usize;
+    fn split_at(self, mid: usize) -> (Self, Self);
+}
+
+impl<T: Send> Split for &mut [T] {
+    fn len(&self) -> usize {
+        <[T]>::len(self)
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        self.split_at_mut(mid)
+    }
+}
+
+impl<T: Sync> Split for &[T] {
+    fn len(&self) -> usize {
+        <[T]>::len(self)
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        <[T]>::split_at(self, mid)
+    }
+}
+
+impl<T: Send> Split for Planes<'_, T> {
+    fn len(&self) -> usize {
+        Planes::len(self)
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        Planes::split_at(self, mid)
+    }
+}
+
+/// Parts of equal length split together.
+impl<A: Split, B: Split> Split for (A, B) {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let (a0, a1) = self.0.split_at(mid);
+        let (b0, b1) = self.1.split_at(mid);
+        ((a0, b0), (a1, b1))
+    }
+}
+
+/// The one parallel driver: `f(start, part)` for consecutive parts of `out` of
+/// [`chunk_len`] elements each, on rayon's workers — or, for at most [`SERIAL_MAX`] elements,
+/// once for the whole on the calling thread. Returns whether some call returned true (an
+/// overflow of f32). Results do not depend on the split.
+fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
+    let n = out.len();
+    if n <= SERIAL_MAX {
+        return f(0, out);
+    }
+    let len = chunk_len(n);
+    let mut parts = Vec::with_capacity(n.div_ceil(len));
+    let (mut start, mut rest) = (0, out);
+    while rest.len() > len {
+        let (part, tail) = rest.split_at(len);
+        parts.push((start, part));
+        (start, rest) = (start + len, tail);
+    }
+    parts.push((start, rest));
+    parts
+        .into_par_iter()
+        .map(|(start, part)| f(start, part))
+        .reduce(|| false, |a, b| a | b)
 }
 
 /// With [`Engine::streaming`], full-Mueller outputs of at least this many elements (8 MB in
@@ -174,10 +251,51 @@ impl<'a> Engine<'a> {
             .kernel
             .clone()
             .streaming(self.stream && out.len() >= STREAM_MIN);
-        let len = chunk_len(out.len());
-        out.par_chunks_mut(len)
-            .enumerate()
-            .for_each(|(c, chunk)| kernel.mueller_into(batch, c * len, chunk));
+        for_chunks(out, |start, part| {
+            kernel.mueller_into(batch, start, part);
+            false
+        });
+        Ok(())
+    }
+
+    /// As [`Engine::mueller_into`] into 16 planes (planar, structure-of-arrays: [`Planes`],
+    /// entry `e = 4·i + j` of element `k` at position `k` of plane `e` — the layout of
+    /// Mitsuba's Mueller matrices and of a table stored entry by entry): the same bits, without
+    /// the transpose into rows (docs/model.md §12, "Layouts"). [`Engine::streaming`] does not
+    /// apply.
+    ///
+    /// # Errors
+    /// [`crate::Error::LengthMismatch`] when the planes (or the per-element index) are not as
+    /// long as the batch.
+    pub fn mueller_planes_into(&self, batch: &impl Batch, out: &mut Planes<'_, f64>) -> Result<()> {
+        check_len("out", out.len(), batch.len())?;
+        self.check(batch.len())?;
+        let kernel = &self.kernel;
+        for_chunks(out.reborrow(), |start, mut part| {
+            kernel.mueller_planes_into(batch, start, &mut part);
+            false
+        });
+        Ok(())
+    }
+
+    /// As [`Engine::mueller_f32_into`] into planes (as [`Engine::mueller_planes_into`]).
+    ///
+    /// # Errors
+    /// As [`Engine::mueller_f32_into`].
+    pub fn mueller_planes_f32_into(
+        &self,
+        batch: &impl Batch,
+        out: &mut Planes<'_, f32>,
+    ) -> Result<()> {
+        check_len("out", out.len(), batch.len())?;
+        self.check(batch.len())?;
+        let kernel = &self.kernel;
+        let overflow = for_chunks(out.reborrow(), |start, mut part| {
+            kernel.mueller_planes_f32_into(batch, start, &mut part)
+        });
+        if overflow {
+            return Err(f32_overflow());
+        }
         Ok(())
     }
 
@@ -198,12 +316,9 @@ impl<'a> Engine<'a> {
             .kernel
             .clone()
             .streaming(self.stream && out.len() >= 2 * STREAM_MIN);
-        let len = chunk_len(out.len());
-        let overflow = out
-            .par_chunks_mut(len)
-            .enumerate()
-            .map(|(c, chunk)| kernel.mueller_f32_into(batch, c * len, chunk))
-            .reduce(|| false, |a, b| a | b);
+        let overflow = for_chunks(out, |start, part| {
+            kernel.mueller_f32_into(batch, start, part)
+        });
         if overflow {
             return Err(f32_overflow());
         }
@@ -235,11 +350,10 @@ impl<'a> Engine<'a> {
         check_len("dolp", dolp.len(), batch.len())?;
         self.check(batch.len())?;
         let kernel = &self.kernel;
-        let len = chunk_len(brdf.len());
-        brdf.par_chunks_mut(len)
-            .zip(dolp.par_chunks_mut(len))
-            .enumerate()
-            .for_each(|(c, (fb, fd))| kernel.brdf_dolp_into(batch, c * len, fb, fd));
+        for_chunks((brdf, dolp), |start, (fb, fd)| {
+            kernel.brdf_dolp_into(batch, start, fb, fd);
+            false
+        });
         Ok(())
     }
 
@@ -262,12 +376,10 @@ impl<'a> Engine<'a> {
         check_len("aolp", aolp.len(), batch.len())?;
         self.check(batch.len())?;
         let kernel = &self.kernel;
-        let len = chunk_len(brdf.len());
-        brdf.par_chunks_mut(len)
-            .zip(dolp.par_chunks_mut(len))
-            .zip(aolp.par_chunks_mut(len))
-            .enumerate()
-            .for_each(|(c, ((fb, fd), fa))| kernel.brdf_dolp_aolp_into(batch, c * len, fb, fd, fa));
+        for_chunks(((brdf, dolp), aolp), |start, ((fb, fd), fa)| {
+            kernel.brdf_dolp_aolp_into(batch, start, fb, fd, fa);
+            false
+        });
         Ok(())
     }
 
@@ -277,6 +389,9 @@ impl<'a> Engine<'a> {
     /// fit or a spectral sweep needs them. Results are exactly those of the unprepared methods.
     pub fn prepare(&self, batch: &GeometryBatch<'_>) -> Prepared {
         let n = batch.len();
+        if n <= SERIAL_MAX {
+            return self.kernel.prepare(batch);
+        }
         let len = chunk_len(n);
         let parts: Vec<Prepared> = (0..n.div_ceil(len))
             .into_par_iter()
@@ -304,10 +419,10 @@ impl<'a> Engine<'a> {
         check_len("out", out.len(), prepared.len())?;
         self.check(prepared.len())?;
         let kernel = &self.kernel;
-        let len = chunk_len(out.len());
-        out.par_chunks_mut(len)
-            .enumerate()
-            .for_each(|(c, chunk)| kernel.mueller_prepared_into(prepared, c * len, chunk));
+        for_chunks(out, |start, part| {
+            kernel.mueller_prepared_into(prepared, start, part);
+            false
+        });
         Ok(())
     }
 
@@ -329,11 +444,10 @@ impl<'a> Engine<'a> {
         check_len("dolp", dolp.len(), prepared.len())?;
         self.check(prepared.len())?;
         let kernel = &self.kernel;
-        let len = chunk_len(brdf.len());
-        brdf.par_chunks_mut(len)
-            .zip(dolp.par_chunks_mut(len))
-            .enumerate()
-            .for_each(|(c, (fb, fd))| kernel.brdf_dolp_prepared_into(prepared, c * len, fb, fd));
+        for_chunks((brdf, dolp), |start, (fb, fd)| {
+            kernel.brdf_dolp_prepared_into(prepared, start, fb, fd);
+            false
+        });
         Ok(())
     }
 
@@ -349,10 +463,10 @@ impl<'a> Engine<'a> {
             // Positions matter for the index: one serial pass (the index is per element).
             kernel.mueller_of(geometries, &mut out);
         } else {
-            let len = chunk_len(out.len());
-            out.par_chunks_mut(len)
-                .zip(geometries.par_chunks(len))
-                .for_each(|(o, g)| kernel.mueller_of(g, o));
+            for_chunks((out.as_mut_slice(), geometries), |_, (o, g)| {
+                kernel.mueller_of(g, o);
+                false
+            });
         }
         Ok(out)
     }
@@ -369,10 +483,10 @@ impl<'a> Engine<'a> {
         if self.index_len.is_some() {
             kernel.mueller_of_angles(vars, &mut out);
         } else {
-            let len = chunk_len(out.len());
-            out.par_chunks_mut(len)
-                .zip(vars.par_chunks(len))
-                .for_each(|(o, v)| kernel.mueller_of_angles(v, o));
+            for_chunks((out.as_mut_slice(), vars), |_, (o, v)| {
+                kernel.mueller_of_angles(v, o);
+                false
+            });
         }
         Ok(out)
     }

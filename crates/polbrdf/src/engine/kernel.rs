@@ -8,6 +8,7 @@
 use crate::engine::block::{
     self, AngleNeeds, BlockIn, Front, Geom, GeomScratch, IndexLanes, Lanes, Thresholds,
 };
+use crate::engine::planes::Planes;
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result, MAX_INDEX};
 use crate::geometry::angles::{self, Trig};
@@ -333,6 +334,18 @@ impl<'a> Kernel<'a> {
     pub fn mueller_into(&self, batch: &impl Batch, start: usize, out: &mut [[f64; 16]]) {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
+            self.run_mueller::<_, _, BLOCK>(&src, index, &mut Rows(out));
+        })
+    }
+
+    /// As [`Kernel::mueller_into`] into planes ([`Planes`]: entry `e = 4·i + j` of element
+    /// `k` at position `k` of plane `e`) — the same bits, without the transpose into rows.
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn mueller_planes_into(&self, batch: &impl Batch, start: usize, out: &mut Planes<'_, f64>) {
+        let index = self.index_at(start, out.len());
+        with_source!(batch, start, out.len(), |src| {
             self.run_mueller::<_, _, BLOCK>(&src, index, out);
         })
     }
@@ -352,12 +365,30 @@ impl<'a> Kernel<'a> {
         start: usize,
         out: &mut [[f32; 16]],
     ) -> bool {
+        self.run_f32(batch, start, &mut Rows(out))
+    }
+
+    /// As [`Kernel::mueller_f32_into`] into planes (as [`Kernel::mueller_planes_into`]): the
+    /// same bits, without the transpose into rows.
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn mueller_planes_f32_into(
+        &self,
+        batch: &impl Batch,
+        start: usize,
+        out: &mut Planes<'_, f32>,
+    ) -> bool {
+        self.run_f32(batch, start, out)
+    }
+
+    fn run_f32<W: SinkF32>(&self, batch: &impl Batch, start: usize, out: &mut W) -> bool {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
             if self.scalar_only || !self.single {
                 return self.run_mueller::<_, _, BLOCK>(&src, index, out);
             }
-            let mut job = MuellerF32Job::<_, BLOCK> {
+            let mut job = MuellerF32Job::<_, _, BLOCK> {
                 kernel: self,
                 src: &src,
                 index,
@@ -383,7 +414,7 @@ impl<'a> Kernel<'a> {
     ) -> bool {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
-            self.run_mueller::<_, _, BLOCK>(&src, index, out)
+            self.run_mueller::<_, _, BLOCK>(&src, index, &mut Rows(out))
         })
     }
 
@@ -435,7 +466,7 @@ impl<'a> Kernel<'a> {
     pub fn mueller_of(&self, geometries: &[Geometry], out: &mut [Mueller]) {
         assert_eq!(geometries.len(), out.len(), "output length");
         let index = self.index_at(0, out.len());
-        self.run_mueller::<_, _, BLOCK>(&Computed(geometries), index, out);
+        self.run_mueller::<_, _, BLOCK>(&Computed(geometries), index, &mut Rows(out));
     }
 
     /// The pBRDF at explicit angle variables (the angle-variable entry point,
@@ -446,7 +477,7 @@ impl<'a> Kernel<'a> {
     pub fn mueller_of_angles(&self, vars: &[AngleVariables], out: &mut [[f64; 16]]) {
         assert_eq!(vars.len(), out.len(), "output length");
         let index = self.index_at(0, out.len());
-        self.run_mueller::<_, _, BLOCK>(&Variables(vars), index, out);
+        self.run_mueller::<_, _, BLOCK>(&Variables(vars), index, &mut Rows(out));
     }
 
     /// The geometry stages of every element of `batch` (the part of the kernel that does not
@@ -482,7 +513,7 @@ impl<'a> Kernel<'a> {
     /// was made at another SIMD level.
     pub fn mueller_prepared_into(&self, prepared: &Prepared, start: usize, out: &mut [[f64; 16]]) {
         let src = prepared.range(start, out.len(), self.level);
-        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), out);
+        self.run_mueller::<_, _, BLOCK>(&src, self.index_at(start, out.len()), &mut Rows(out));
     }
 
     /// As [`Kernel::brdf_dolp_into`], for elements `start .. start + brdf.len()` of a prepared
@@ -508,7 +539,11 @@ impl<'a> Kernel<'a> {
     pub fn pbrdf(&self, g: &Geometry) -> Mueller {
         let mut out = [Mueller::zero()];
         let index = self.index_at(0, 1);
-        self.run_mueller::<_, _, 1>(&Computed(std::slice::from_ref(g)), index, &mut out);
+        self.run_mueller::<_, _, 1>(
+            &Computed(std::slice::from_ref(g)),
+            index,
+            &mut Rows(&mut out),
+        );
         out[0]
     }
 
@@ -548,21 +583,21 @@ impl<'a> Kernel<'a> {
         }
     }
 
-    fn run_mueller<G: Blocks, O: MuellerOut, const N: usize>(
+    fn run_mueller<G: Blocks, W: Sink, const N: usize>(
         &self,
         src: &G,
         index: IndexSource<'_>,
-        out: &mut [O],
+        out: &mut W,
     ) -> bool {
         if self.scalar_only {
             let mut overflow = false;
-            for (i, o) in out.iter_mut().enumerate() {
+            for i in 0..out.len() {
                 let v = src.reference(self, index, i).pbrdf.to_row_major();
-                overflow |= O::write_block(std::slice::from_mut(o), &[v], false);
+                overflow |= out.put_one(i, &v);
             }
             return overflow;
         }
-        let mut job = MuellerJob::<G, O, N> {
+        let mut job = MuellerJob::<G, W, N> {
             kernel: self,
             src,
             index,
@@ -1281,6 +1316,180 @@ impl MuellerOut for [f32; 16] {
     }
 }
 
+/// Where a job's results go: the caller's row-major array ([`Rows`]) or its planes
+/// ([`Planes`]), written a block (or one element) at a time at positions relative to the job's
+/// start.
+trait Sink {
+    /// The number of elements.
+    fn len(&self) -> usize;
+
+    /// Elements `start .. start + len` from a block's 16 rows of lanes (entry-major), through
+    /// `staged` where needed; `stream` as [`MuellerOut::write_block`]. Returns whether a finite
+    /// value became infinite (only a narrower format can overflow).
+    fn put_rows<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[Lanes<N>; 16],
+        staged: &mut [[f64; 16]; N],
+        stream: bool,
+    ) -> bool;
+
+    /// Element `i` (row-major), returning as [`Sink::put_rows`].
+    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool;
+}
+
+/// A [`Sink`] of single precision, which also takes the f32 kernel's rows.
+trait SinkF32: Sink {
+    /// Elements `start .. start + len` from a block's 16 rows of f32 lanes.
+    fn put_rows_f32<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[[f32; N]; 16],
+        staged: &mut [[f32; 16]; N],
+    );
+}
+
+/// A row-major output: one 4×4 result per element.
+struct Rows<'o, O>(&'o mut [O]);
+
+impl<O: MuellerOut> Sink for Rows<'_, O> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    #[inline(always)]
+    fn put_rows<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[Lanes<N>; 16],
+        staged: &mut [[f64; 16]; N],
+        stream: bool,
+    ) -> bool {
+        O::write_rows(&mut self.0[start..start + len], rows, staged, stream)
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
+        O::write_block(&mut self.0[i..i + 1], std::slice::from_ref(v), false)
+    }
+}
+
+impl SinkF32 for Rows<'_, [f32; 16]> {
+    /// A whole block is transposed straight into the output, a partial one through `staged`.
+    #[inline(always)]
+    fn put_rows_f32<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[[f32; N]; 16],
+        staged: &mut [[f32; 16]; N],
+    ) {
+        let dst = &mut self.0[start..start + len];
+        match <&mut [[f32; 16]; N]>::try_from(&mut *dst) {
+            Ok(whole) => transpose_f32(rows, whole),
+            Err(_) => {
+                transpose_f32(rows, staged);
+                dst.copy_from_slice(&staged[..len]);
+            }
+        }
+    }
+}
+
+/// Lanes `..len` of each row into `planes[e][start..start + len]`: a whole block as fixed-size
+/// copies (a few vector moves each; a `memcpy` call per plane would cost more than the copy).
+#[inline(always)]
+fn copy_rows<T: Copy, const N: usize>(
+    planes: &mut [&mut [T]; 16],
+    start: usize,
+    len: usize,
+    rows: &[[T; N]; 16],
+) {
+    for (plane, row) in planes.iter_mut().zip(rows) {
+        match <&mut [T; N]>::try_from(&mut plane[start..start + len]) {
+            Ok(whole) => *whole = *row,
+            Err(_) => plane[start..start + len].copy_from_slice(&row[..len]),
+        }
+    }
+}
+
+/// Planes take a block's rows as they are: 16 contiguous copies, no transpose (and no
+/// non-temporal stores: `stream` is ignored).
+impl Sink for Planes<'_, f64> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Planes::len(self)
+    }
+    #[inline(always)]
+    fn put_rows<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[Lanes<N>; 16],
+        _staged: &mut [[f64; 16]; N],
+        _stream: bool,
+    ) -> bool {
+        copy_rows(&mut self.planes, start, len, rows);
+        false
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
+        for (plane, x) in self.planes.iter_mut().zip(v) {
+            plane[i] = *x;
+        }
+        false
+    }
+}
+
+/// Each entry rounded to the nearest f32, as [`MuellerOut`] for `[f32; 16]`.
+impl Sink for Planes<'_, f32> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Planes::len(self)
+    }
+    #[inline(always)]
+    fn put_rows<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[Lanes<N>; 16],
+        _staged: &mut [[f64; 16]; N],
+        _stream: bool,
+    ) -> bool {
+        let mut overflow = false;
+        for (plane, row) in self.planes.iter_mut().zip(rows) {
+            for (o, x) in plane[start..start + len].iter_mut().zip(row) {
+                *o = *x as f32;
+                overflow |= o.is_infinite() & x.is_finite();
+            }
+        }
+        overflow
+    }
+    #[inline(always)]
+    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
+        let mut overflow = false;
+        for (plane, x) in self.planes.iter_mut().zip(v) {
+            plane[i] = *x as f32;
+            overflow |= plane[i].is_infinite() & x.is_finite();
+        }
+        overflow
+    }
+}
+
+impl SinkF32 for Planes<'_, f32> {
+    #[inline(always)]
+    fn put_rows_f32<const N: usize>(
+        &mut self,
+        start: usize,
+        len: usize,
+        rows: &[[f32; N]; 16],
+        _staged: &mut [[f32; 16]; N],
+    ) {
+        copy_rows(&mut self.planes, start, len, rows);
+    }
+}
+
 /// 16 rows of lanes (entry-major) into row-major 4×4 results (element-major): with AVX
 /// register shuffles in 4×4 tiles where the CPU has them.
 #[inline(always)]
@@ -1424,16 +1633,16 @@ fn dispatch<J: Job>(level: SimdLevel, job: &mut J) {
     }
 }
 
-struct MuellerJob<'k, 'a, 's, 'o, G, O, const N: usize> {
+struct MuellerJob<'k, 'a, 's, 'o, G, W, const N: usize> {
     kernel: &'k Kernel<'a>,
     src: &'s G,
     index: IndexSource<'k>,
-    out: &'o mut [O],
+    out: &'o mut W,
     /// A finite entry beyond the output format's range.
     overflow: bool,
 }
 
-impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, O, N> {
+impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
@@ -1444,20 +1653,20 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
         let mut rows = [[0.0; N]; 16];
         let mut staged = [[0.0; 16]; N];
         let mut cache = SpectralCache::new();
-        for (blk, dst) in self.out.chunks_mut(N).enumerate() {
-            let start = blk * N;
+        let n = self.out.len();
+        for start in (0..n).step_by(N) {
+            let len = N.min(n - start);
             let geo = self
                 .src
-                .geometry::<M, N, true>(start, dst.len(), needs, &mut scratch);
-            let idx = self.index.lanes::<N>(start, dst.len(), &mut cache);
+                .geometry::<M, N, true>(start, len, needs, &mut scratch);
+            let idx = self.index.lanes::<N>(start, len, &mut cache);
             block::front::<M, N>(&k.params, geo, &idx, &mut front);
             block::mueller::<M, N>(&mut front, geo, &mut rows);
-            self.overflow |= O::write_rows(dst, &rows, &mut staged, k.stream);
-            for j in 0..dst.len() {
+            self.overflow |= self.out.put_rows(start, len, &rows, &mut staged, k.stream);
+            for j in 0..len {
                 if front.fallback[j] {
                     let v = self.src.reference(k, self.index, start + j);
-                    let v = v.pbrdf.to_row_major();
-                    self.overflow |= O::write_block(&mut dst[j..j + 1], &[v], false);
+                    self.overflow |= self.out.put_one(start + j, &v.pbrdf.to_row_major());
                 }
             }
         }
@@ -1471,11 +1680,11 @@ impl<G: Blocks, O: MuellerOut, const N: usize> Job for MuellerJob<'_, '_, '_, '_
 /// flags are gathered, [`BLOCK`] at a time, into blocks of the f64 kernel (backend `M`), and
 /// those the f64 kernel flags in turn take the one-geometry path — every element ends where
 /// its accuracy holds, and most of the work stays in f32.
-struct MuellerF32Job<'k, 'a, 's, 'o, G, const N: usize> {
+struct MuellerF32Job<'k, 'a, 's, 'o, G, W, const N: usize> {
     kernel: &'k Kernel<'a>,
     src: &'s G,
     index: IndexSource<'k>,
-    out: &'o mut [[f32; 16]],
+    out: &'o mut W,
     /// A finite entry beyond f32's range.
     overflow: bool,
 }
@@ -1503,7 +1712,7 @@ impl<S: Source> Source for Gathered<'_, S> {
     }
 }
 
-impl<G: F32Blocks, const N: usize> MuellerF32Job<'_, '_, '_, '_, G, N> {
+impl<G: F32Blocks, W: SinkF32, const N: usize> MuellerF32Job<'_, '_, '_, '_, G, W, N> {
     /// The pending elements through the f64 kernel (and, where it flags them, the one-geometry
     /// path), rounded to f32 into their places.
     #[inline(always)]
@@ -1523,7 +1732,7 @@ impl<G: F32Blocks, const N: usize> MuellerF32Job<'_, '_, '_, '_, G, N> {
             } else {
                 std::array::from_fn(|e| w.rows[e][j])
             };
-            self.overflow |= <[f32; 16]>::write_block(&mut self.out[i..i + 1], &[v], false);
+            self.overflow |= self.out.put_one(i, &v);
         }
         w.len = 0;
     }
@@ -1602,7 +1811,7 @@ fn refine_d<M: Math<F = f64>, G: F32Blocks, const N: usize>(
     }
 }
 
-impl<G: F32Blocks, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, G, N> {
+impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, G, W, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S1: Math<F = f32>>(&mut self) {
         let k = self.kernel;
@@ -1632,14 +1841,7 @@ impl<G: F32Blocks, const N: usize> Job for MuellerF32Job<'_, '_, '_, '_, G, N> {
             refine_d::<M, G, N>(&scratch, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
-            let dst = &mut self.out[start..start + len];
-            match <&mut [[f32; 16]; N]>::try_from(&mut *dst) {
-                Ok(whole) => transpose_f32(&rows, whole),
-                Err(_) => {
-                    transpose_f32(&rows, &mut staged);
-                    dst.copy_from_slice(&staged[..len]);
-                }
-            }
+            self.out.put_rows_f32(start, len, &rows, &mut staged);
             for j in 0..len {
                 if front.fallback[j] {
                     wide.pending[wide.len] = start + j;

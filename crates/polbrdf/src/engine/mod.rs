@@ -22,6 +22,7 @@
 //! | [`simd`] | which instruction set |
 //! | `block` | the block kernel: sines and cosines → angles → `q` → D, SO, `g`, `f_v` → Fresnel amplitudes → rotations → F, or → BRDF, DoLP (AoLP) |
 //! | [`kernel`] | the serial driver ([`Kernel`]): blocks, the per-element index ([`IndexColumns`]), the elements the block kernel must not take |
+//! | [`planes`] | the planar (structure-of-arrays) output |
 //! | [`batch`] | the parallel driver ([`Engine`], and the free functions of earlier releases) |
 //!
 //! **Accuracy.** Every entry agrees with `Material::evaluate` to within `1e-12·F00` (tested at
@@ -35,8 +36,10 @@
 pub mod batch;
 pub(crate) mod block;
 pub mod kernel;
+pub mod planes;
 pub mod simd;
 
 pub use batch::{Engine, Precision};
 pub use kernel::{elementary_into, Elementary, IndexColumns, Kernel, Prepared, BLOCK};
+pub use planes::Planes;
 pub use simd::{simd_level, SimdLevel};
