@@ -24,6 +24,7 @@ use polbrdf::analysis::emission::{emissivities, Emissivity};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{TableSky, ZenithProfile};
 use polbrdf::analysis::thermal;
+use polbrdf::engine::batch::try_for_chunks;
 use polbrdf::engine::{Kernel, Precision};
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
@@ -39,8 +40,9 @@ use std::collections::HashMap;
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
 
-/// Elements per parallel task (as the core's batch module).
-const CHUNK: usize = 2048;
+/// Most elements per parallel task: the core's driver (`try_for_chunks`) hands out at most
+/// this many.
+const CHUNK: usize = polbrdf::engine::batch::CHUNK;
 
 // ---------------------------------------------------------------------------------------------
 // Errors
@@ -766,18 +768,16 @@ impl Store<f32> for StoreF32 {
     }
 }
 
-/// Fills `rows` (one row-major 4×4 per geometry) in parallel chunks of [`CHUNK`]: `chunk(c,
-/// rows)` evaluates chunk `c` through the serial kernel (true when an entry overflowed f32),
-/// with plain stores as the batch API does by default (`Engine::streaming`).
+/// Fills `rows` (one row-major 4×4 per geometry) through the core's parallel driver
+/// (`try_for_chunks`: parts of at most [`CHUNK`], a small batch on the calling thread):
+/// `chunk(start, rows)` evaluates the part at `start` through the serial kernel (true when an
+/// entry overflowed f32), with plain stores as the batch API does by default
+/// (`Engine::streaming`).
 fn mueller_chunks<T: Send>(
     rows: &mut [[T; 16]],
     chunk: impl Fn(usize, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
 ) -> Result<(), polbrdf::Error> {
-    let overflow = rows
-        .par_chunks_mut(CHUNK)
-        .enumerate()
-        .map(|(c, rows)| chunk(c, rows))
-        .try_reduce(|| false, |a, b| Ok(a | b))?;
+    let overflow = try_for_chunks(rows, chunk)?;
     if overflow {
         return Err(polbrdf::engine::batch::f32_overflow());
     }
@@ -793,9 +793,9 @@ fn mueller_rows<T: Send>(
     rows: &mut [[T; 16]],
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
-    mueller_chunks(rows, |c, rows| {
-        chunk_batch(input, c * CHUNK, rows.len(), degrees, |b| {
-            with_engine(m, wl, c * CHUNK, rows.len(), |e| {
+    mueller_chunks(rows, |start, rows| {
+        chunk_batch(input, start, rows.len(), degrees, |b| {
+            with_engine(m, wl, start, rows.len(), |e| {
                 Ok(store.store(e.kernel(), b, rows))
             })
         })
@@ -812,8 +812,8 @@ fn direction_rows<T: Send>(
     rows: &mut [[T; 16]],
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
-    mueller_chunks(rows, |c, rows| {
-        let (start, len) = (c * CHUNK, rows.len());
+    mueller_chunks(rows, |start, rows| {
+        let len = rows.len();
         let (mut bi, mut br) = ([[0.0f64; 3]; CHUNK], [[0.0f64; 3]; CHUNK]);
         let (si, sr) = (
             spread(w_i, start, len, &mut bi),
@@ -1004,14 +1004,12 @@ fn brdf_dolp_flat<'py>(
         let d = dw.as_slice_mut().expect("a new array is contiguous");
         let m = &material.inner;
         py.detach(|| {
-            b.par_chunks_mut(CHUNK)
-                .zip(d.par_chunks_mut(CHUNK))
-                .enumerate()
-                .try_for_each(|(c, (b, d))| {
-                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                        with_engine(m, wl, c * CHUNK, b.len(), |e| e.brdf_dolp_into(g, b, d))
-                    })
+            try_for_chunks((b, d), |start, (b, d)| {
+                chunk_batch(input, start, b.len(), degrees, |g| {
+                    with_engine(m, wl, start, b.len(), |e| e.brdf_dolp_into(g, b, d))
                 })
+                .map(|()| false)
+            })
         })
         .map_err(|e| core_err(py, &e))?;
     }
@@ -1069,32 +1067,23 @@ fn evaluate_flat<'py>(
                 }
                 Ok(())
             };
-        py.detach(|| {
-            let chunks = b
-                .par_chunks_mut(CHUNK)
-                .zip(d.par_chunks_mut(CHUNK))
-                .zip(a.par_chunks_mut(CHUNK))
-                .enumerate();
-            match f {
-                Some(f) => {
-                    let (rows, _) = f.as_chunks_mut::<16>();
-                    chunks.zip(rows.par_chunks_mut(CHUNK)).try_for_each(
-                        |((c, ((b, d), a)), rows)| {
-                            chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                                with_engine(m, wl, c * CHUNK, b.len(), |e| {
-                                    e.mueller_into(g, rows)
-                                })?;
-                                scalars(c * CHUNK, g, b, d, a)
-                            })
-                        },
-                    )
-                }
-                None => chunks.try_for_each(|(c, ((b, d), a))| {
-                    chunk_batch(input, c * CHUNK, b.len(), degrees, |g| {
-                        scalars(c * CHUNK, g, b, d, a)
+        py.detach(|| match f {
+            Some(f) => {
+                let (rows, _) = f.as_chunks_mut::<16>();
+                try_for_chunks((((b, d), a), rows), |start, (((b, d), a), rows)| {
+                    chunk_batch(input, start, b.len(), degrees, |g| {
+                        with_engine(m, wl, start, b.len(), |e| e.mueller_into(g, rows))?;
+                        scalars(start, g, b, d, a)
                     })
-                }),
+                    .map(|()| false)
+                })
             }
+            None => try_for_chunks(((b, d), a), |start, ((b, d), a)| {
+                chunk_batch(input, start, b.len(), degrees, |g| {
+                    scalars(start, g, b, d, a)
+                })
+                .map(|()| false)
+            }),
         })
         .map_err(|e| core_err(py, &e))?;
     }

@@ -674,3 +674,42 @@ fn elementary_functions_for_benchmarks_match_the_standard_library() {
         }
     }
 }
+
+#[test]
+fn the_parallel_driver_covers_every_element_once_and_keeps_errors() {
+    use polbrdf::engine::batch::{try_for_chunks, CHUNK, SERIAL_MAX};
+    // Never called for nothing.
+    let mut none: Vec<u32> = vec![];
+    let r: Result<bool, ()> = try_for_chunks(none.as_mut_slice(), |_, _| panic!("called"));
+    assert_eq!(r, Ok(false));
+    for n in [1, SERIAL_MAX, SERIAL_MAX + 1, 3 * CHUNK + 5, 100_003] {
+        let mut marks = vec![0u32; n];
+        let pos: Vec<usize> = (0..n).collect();
+        let caller = std::thread::current().id();
+        let overflow = try_for_chunks((marks.as_mut_slice(), pos.as_slice()), |start, (m, p)| {
+            assert!(m.len() <= CHUNK && m.len() == p.len());
+            if n <= SERIAL_MAX {
+                // A small batch is one call on the calling thread.
+                assert_eq!((start, m.len()), (0, n));
+                assert_eq!(std::thread::current().id(), caller);
+            }
+            for (j, (x, &i)) in m.iter_mut().zip(p).enumerate() {
+                assert_eq!(i, start + j, "part at {start}");
+                *x += 1;
+            }
+            Ok::<_, ()>(start == 0)
+        });
+        assert_eq!(overflow, Ok(true), "n = {n}");
+        assert!(marks.iter().all(|&x| x == 1), "n = {n}");
+    }
+    // An error of any part is returned.
+    let mut v = vec![0u8; 50_000];
+    let r = try_for_chunks(v.as_mut_slice(), |start, _| {
+        if start > 0 {
+            Err(start)
+        } else {
+            Ok(false)
+        }
+    });
+    assert!(matches!(r, Err(s) if s > 0));
+}

@@ -30,9 +30,15 @@ fn chunk_len(n: usize) -> usize {
 pub const SERIAL_MAX: usize = 2048;
 
 /// Outputs (and inputs) that split into disjoint parts by element, for the parallel driver
-/// [`for_chunks`].
-trait Split: Sized + Send {
+/// [`try_for_chunks`]: slices, [`Planes`], and pairs of them (split together).
+pub trait Split: Sized + Send {
+    /// The number of elements.
     fn len(&self) -> usize;
+    /// Whether there are none.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Elements `.. mid` and `mid ..`.
     fn split_at(self, mid: usize) -> (Self, Self);
 }
 
@@ -63,7 +69,7 @@ impl<T: Send> Split for Planes<'_, T> {
     }
 }
 
-/// Parts of equal length split together.
+/// Parts of equal length (the first part's length counts), split together.
 impl<A: Split, B: Split> Split for (A, B) {
     fn len(&self) -> usize {
         self.0.len()
@@ -75,12 +81,22 @@ impl<A: Split, B: Split> Split for (A, B) {
     }
 }
 
-/// The one parallel driver: `f(start, part)` for consecutive parts of `out` of
-/// [`chunk_len`] elements each, on rayon's workers — or, for at most [`SERIAL_MAX`] elements,
-/// once for the whole on the calling thread. Returns whether some call returned true (an
-/// overflow of f32). Results do not depend on the split.
-fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
+/// The one parallel driver of the engine (and of the Python module): `f(start, part)` for
+/// consecutive parts of `out` of at most [`CHUNK`] elements each (about four per thread), on
+/// rayon's workers — or, for at most [`SERIAL_MAX`] elements, once for the whole on the calling
+/// thread; never for an empty `out`. Returns whether some call returned `Ok(true)` (an overflow of f32), or an error of
+/// one of them. Results do not depend on the split.
+///
+/// # Errors
+/// An error returned by `f`.
+pub fn try_for_chunks<O: Split, E: Send>(
+    out: O,
+    f: impl Fn(usize, O) -> std::result::Result<bool, E> + Sync,
+) -> std::result::Result<bool, E> {
     let n = out.len();
+    if out.is_empty() {
+        return Ok(false);
+    }
     if n <= SERIAL_MAX {
         return f(0, out);
     }
@@ -96,7 +112,17 @@ fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
     parts
         .into_par_iter()
         .map(|(start, part)| f(start, part))
-        .reduce(|| false, |a, b| a | b)
+        .try_reduce(|| false, |a, b| Ok(a | b))
+}
+
+/// [`try_for_chunks`] of an infallible `f`.
+fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
+    match try_for_chunks(out, |start, part| {
+        Ok::<_, std::convert::Infallible>(f(start, part))
+    }) {
+        Ok(b) => b,
+        Err(never) => match never {},
+    }
 }
 
 /// With [`Engine::streaming`], full-Mueller outputs of at least this many elements (8 MB in
