@@ -749,12 +749,27 @@ trait Store<T>: Sync {
     fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[T; 16]]) -> bool;
 }
 
-/// [`Store`] in float64.
-struct StoreF64;
+/// [`Store`] in float64; `stream`: with non-temporal stores, as the engine writes an output of
+/// the whole array's length (`Engine::streams`).
+struct StoreF64 {
+    stream: bool,
+}
+
+impl StoreF64 {
+    fn new(m: &Material, n: usize) -> Self {
+        Self {
+            stream: Engine::new(m).streams(n),
+        }
+    }
+}
 
 impl Store<f64> for StoreF64 {
     fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f64; 16]]) -> bool {
-        k.mueller_into(batch, 0, rows);
+        if self.stream {
+            k.clone().streaming(true).mueller_into(batch, 0, rows);
+        } else {
+            k.mueller_into(batch, 0, rows);
+        }
         false
     }
 }
@@ -771,8 +786,7 @@ impl Store<f32> for StoreF32 {
 /// Fills `rows` (one row-major 4×4 per geometry) through the core's parallel driver
 /// (`try_for_chunks`: parts of at most [`CHUNK`], a small batch on the calling thread):
 /// `chunk(start, rows)` evaluates the part at `start` through the serial kernel (true when an
-/// entry overflowed f32), with plain stores as the batch API does by default
-/// (`Engine::streaming`).
+/// entry overflowed f32), with the stores the batch API would use (`StoreF64`).
 fn mueller_chunks<T: Send>(
     rows: &mut [[T; 16]],
     chunk: impl Fn(usize, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
@@ -884,7 +898,7 @@ fn mueller_flat<'py>(
     let m = &material.inner;
     match precision {
         Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
-            mueller_rows(m, input, wl, degrees, rows, &StoreF64)
+            mueller_rows(m, input, wl, degrees, rows, &StoreF64::new(m, n))
         }),
         Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
             mueller_rows(m, input, wl, degrees, rows, &StoreF32)
@@ -944,7 +958,7 @@ fn mueller_directions_flat<'py>(
     let m = &material.inner;
     match precision {
         Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
-            direction_rows(m, [wi, wr], wl, rows, &StoreF64)
+            direction_rows(m, [wi, wr], wl, rows, &StoreF64::new(m, n))
         }),
         Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
             direction_rows(m, [wi, wr], wl, rows, &StoreF32)

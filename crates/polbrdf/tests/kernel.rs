@@ -601,10 +601,9 @@ fn prepared_geometry_gives_exactly_the_unprepared_results() {
 
 #[test]
 fn streamed_outputs_equal_cached_ones_bit_for_bit() {
-    // With streaming, outputs of at least STREAM_MIN elements go out with non-temporal stores
-    // (through a staging block); otherwise they are transposed straight into the output.
-    // Both, through the kernel and the engine, and a misaligned destination, give the same
-    // bits.
+    // With streaming (the engine's default for outputs of at least STREAM_MIN elements),
+    // whole blocks go out of the transpose by non-temporal stores; otherwise by plain ones.
+    // Both, through the kernel and the engine, at any alignment, give the same bits.
     let m = polbrdf::preset("gold").unwrap().build().unwrap();
     let mut rng = Rng::new(13);
     let n = batch::STREAM_MIN + 37;
@@ -627,12 +626,24 @@ fn streamed_outputs_equal_cached_ones_bit_for_bit() {
             .unwrap();
         assert!(cached == engine, "engine (streaming {stream}) vs kernel");
     }
-    // A destination that is not 16-byte aligned takes the plain stores.
-    let mut flat = vec![f64::NAN; 16 * 100 + 1];
-    let (_, rest) = flat.split_at_mut(1);
-    let dst: &mut [[f64; 16]] = rest.as_chunks_mut::<16>().0;
-    k.clone().streaming(true).mueller_into(&batch, 5, dst);
-    assert!(dst == &cached[5..105], "misaligned streamed output");
+    // Destinations at every 8-byte offset from a 64-byte boundary: 32-byte aligned (256-bit
+    // non-temporal stores), 16-byte aligned (their halves), and not 16-byte aligned (plain
+    // stores); an odd length ends in a partial block.
+    let mut flat = vec![f64::NAN; 16 * 101 + 8];
+    let base = (0..8)
+        .find(|o| (flat.as_ptr() as usize + 8 * o).is_multiple_of(64))
+        .unwrap();
+    for shift in 0..4 {
+        let off = base + shift;
+        let dst: &mut [[f64; 16]] = flat[off..off + 16 * 101].as_chunks_mut::<16>().0;
+        dst.fill([f64::NAN; 16]);
+        k.clone().streaming(true).mueller_into(&batch, 5, dst);
+        assert!(
+            dst == &cached[5..106],
+            "streamed output {} bytes past a 64-byte boundary",
+            8 * shift
+        );
+    }
     // Spot checks against the one-geometry path.
     for i in (0..n).step_by(997) {
         let want = m.evaluate(&batch.get(i)).pbrdf.to_row_major();

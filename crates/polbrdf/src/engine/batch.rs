@@ -125,8 +125,8 @@ fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
     }
 }
 
-/// With [`Engine::streaming`], full-Mueller outputs of at least this many elements (8 MB in
-/// f64) bypass the caches ([`Kernel::streaming`]).
+/// Full-Mueller f64 outputs of at least this many elements (8 MB) bypass the caches
+/// ([`Engine::streaming`], [`Kernel::streaming`]).
 pub const STREAM_MIN: usize = 1 << 16;
 
 /// The floating-point format of the results (docs/model.md §12, "Precision"). Every result is
@@ -200,7 +200,7 @@ pub struct Engine<'a> {
     kernel: Kernel<'a>,
     /// The length of a per-element index or of the wavelengths, and its name for messages.
     index_len: Option<(usize, &'static str)>,
-    /// Non-temporal stores for outputs of at least [`STREAM_MIN`] elements.
+    /// Non-temporal stores for f64 outputs of at least [`STREAM_MIN`] elements.
     stream: bool,
 }
 
@@ -210,20 +210,28 @@ impl<'a> Engine<'a> {
         Self {
             kernel: Kernel::new(material),
             index_len: None,
-            stream: false,
+            stream: true,
         }
     }
 
-    /// With `on`, full-Mueller outputs of at least [`STREAM_MIN`] elements are written with
-    /// non-temporal stores ([`Kernel::streaming`]), which bypass the caches. Off by default:
-    /// the stores go through a staging block, and on the machine measured (a Zen 4 class
-    /// AVX-512 host with 22–29 GB/s of write bandwidth) that cost more than the traffic it
-    /// saves — float64 full Mueller on 10⁶ geometries ran 1.5–1.6× faster on one thread and
-    /// 1.23–1.26× on two without it (docs/model.md §12). Worth trying only where the output's write is memory-bound (many
-    /// cores sharing one memory). The results are the same bits either way.
+    /// With `on` (the default), full-Mueller f64 row-major outputs of at least [`STREAM_MIN`]
+    /// elements (8 MB) are written with non-temporal stores straight from the transpose
+    /// ([`Kernel::streaming`]), which skip the read for ownership of the output's cache lines
+    /// and leave the caches alone. On the machine measured (a Zen 4 class AVX-512 host, 2
+    /// threads, 2·10⁶ geometries, medians of 11 alternating repeats) that ran 1.02–1.35×
+    /// faster than plain stores (docs/model.md §12). Turn it off when the output is read back
+    /// at once and fits the last-level cache. float32 and planar outputs always use plain
+    /// stores (non-temporal ones made float32 slower). The bits are the same either way.
     pub fn streaming(mut self, on: bool) -> Self {
         self.stream = on;
         self
+    }
+
+    /// Whether [`Engine::mueller_into`] writes an output of `n` elements with non-temporal
+    /// stores ([`Engine::streaming`] and [`STREAM_MIN`]) — for drivers of their own around the
+    /// serial kernel (the Python module).
+    pub fn streams(&self, n: usize) -> bool {
+        self.stream && n >= STREAM_MIN
     }
 
     /// Element `j` of every batch evaluated with index `index.get(j)` (the batch must be as
@@ -272,11 +280,8 @@ impl<'a> Engine<'a> {
     pub fn mueller_into(&self, batch: &impl Batch, out: &mut [[f64; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
-        // With `streaming`, outputs far beyond the caches (≥ 8 MB) bypass them.
-        let kernel = self
-            .kernel
-            .clone()
-            .streaming(self.stream && out.len() >= STREAM_MIN);
+        // Outputs far beyond the caches (≥ 8 MB) bypass them (`streaming`).
+        let kernel = self.kernel.clone().streaming(self.streams(out.len()));
         for_chunks(out, |start, part| {
             kernel.mueller_into(batch, start, part);
             false
@@ -337,11 +342,8 @@ impl<'a> Engine<'a> {
     pub fn mueller_f32_into(&self, batch: &impl Batch, out: &mut [[f32; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
-        // With `streaming`: the same bytes as an f64 output of half the length, beyond 8 MB.
-        let kernel = self
-            .kernel
-            .clone()
-            .streaming(self.stream && out.len() >= 2 * STREAM_MIN);
+        // Plain stores (`streaming` does not apply).
+        let kernel = &self.kernel;
         let overflow = for_chunks(out, |start, part| {
             kernel.mueller_f32_into(batch, start, part)
         });
@@ -444,7 +446,7 @@ impl<'a> Engine<'a> {
     pub fn mueller_prepared_into(&self, prepared: &Prepared, out: &mut [[f64; 16]]) -> Result<()> {
         check_len("out", out.len(), prepared.len())?;
         self.check(prepared.len())?;
-        let kernel = &self.kernel;
+        let kernel = self.kernel.clone().streaming(self.streams(out.len()));
         for_chunks(out, |start, part| {
             kernel.mueller_prepared_into(prepared, start, part);
             false

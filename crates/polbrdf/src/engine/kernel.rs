@@ -309,9 +309,14 @@ impl<'a> Kernel<'a> {
         Ok(self)
     }
 
-    /// With `on`, [`Kernel::mueller_into`] writes its results with non-temporal stores where the
-    /// CPU has them (x86-64): faster for outputs much larger than the caches, slower for
-    /// outputs read back at once.
+    /// With `on`, [`Kernel::mueller_into`] (f64, row-major) writes whole blocks with
+    /// non-temporal stores, straight from the transpose, where the CPU has AVX and the output
+    /// is 16-byte aligned (256-bit stores where it is 32-byte aligned): no read for ownership
+    /// of the output's cache lines, and the caches are left alone — faster for outputs much
+    /// larger than the caches, slower for outputs read back at once. Partial blocks,
+    /// elements taken from the one-geometry path and other outputs use plain stores. The bits
+    /// are the same either way. Off by default ([`crate::Engine`] decides by the output's
+    /// size).
     pub fn streaming(mut self, on: bool) -> Self {
         self.stream = on;
         self
@@ -1174,23 +1179,24 @@ trait MuellerOut: Sized {
     fn set(&mut self, v: &[f64; 16]);
 
     /// Writes a block given as 16 rows of lanes (entry-major; the first `dst.len()` lanes),
-    /// through `staged`; returns as [`MuellerOut::write_block`].
+    /// through `staged`; `stream`: with non-temporal stores where the format and the
+    /// destination allow (outputs much larger than the caches, not read back soon). Returns as
+    /// [`MuellerOut::write_block`].
     #[inline(always)]
     fn write_rows<const N: usize>(
         dst: &mut [Self],
         rows: &[Lanes<N>; 16],
         staged: &mut [[f64; 16]; N],
-        stream: bool,
+        _stream: bool,
     ) -> bool {
-        transpose(rows, staged);
-        Self::write_block(dst, staged, stream)
+        transpose(rows, staged, false);
+        Self::write_block(dst, staged)
     }
 
-    /// Copies a block of results out; `stream`: with non-temporal stores where possible (for
-    /// outputs much larger than the caches, which are then not read back soon). Returns
-    /// whether a finite value became infinite (only a narrower format can overflow).
+    /// Copies results out. Returns whether a finite value became infinite (only a narrower
+    /// format can overflow).
     #[inline(always)]
-    fn write_block(dst: &mut [Self], src: &[[f64; 16]], _stream: bool) -> bool {
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]]) -> bool {
         for (o, v) in dst.iter_mut().zip(src) {
             o.set(v);
         }
@@ -1204,7 +1210,8 @@ impl MuellerOut for [f64; 16] {
         *self = *v;
     }
 
-    /// A whole block without streaming is transposed straight into `dst`.
+    /// A whole block is transposed straight into `dst` (with `stream`, by non-temporal stores
+    /// where `dst` is 16-byte aligned), a partial one through `staged`.
     #[inline(always)]
     fn write_rows<const N: usize>(
         dst: &mut [Self],
@@ -1213,33 +1220,12 @@ impl MuellerOut for [f64; 16] {
         stream: bool,
     ) -> bool {
         match <&mut [Self; N]>::try_from(&mut *dst) {
-            Ok(whole) if !stream => {
-                transpose(rows, whole);
-                false
-            }
-            _ => {
-                transpose(rows, staged);
-                Self::write_block(dst, staged, stream)
+            Ok(whole) => transpose(rows, whole, stream),
+            Err(_) => {
+                transpose(rows, staged, false);
+                dst.copy_from_slice(&staged[..dst.len()]);
             }
         }
-    }
-
-    #[inline(always)]
-    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
-            use std::arch::x86_64::{_mm_loadu_pd, _mm_stream_pd};
-            let n = dst.len().min(src.len());
-            let (d, s) = (dst.as_mut_ptr().cast::<f64>(), src.as_ptr().cast::<f64>());
-            for i in (0..16 * n).step_by(2) {
-                // SAFETY: `d` and `s` are valid for 16·n f64 each, `d` is 16-byte aligned (so is
-                // every even offset from it), and SSE2 is part of x86-64.
-                unsafe { _mm_stream_pd(d.add(i), _mm_loadu_pd(s.add(i))) };
-            }
-            return false;
-        }
-        let n = dst.len().min(src.len());
-        dst[..n].copy_from_slice(&src[..n]);
         false
     }
 }
@@ -1252,17 +1238,18 @@ impl MuellerOut for [f32; 16] {
         *self = v.map(|x| x as f32);
     }
 
-    /// A whole block without streaming: rounded to f32 entry-major (one vectorized loop, with
-    /// the overflow check), then transposed straight into `dst`.
+    /// A whole block: rounded to f32 entry-major (one vectorized loop, with the overflow
+    /// check), then transposed straight into `dst`; a partial one through `staged`. Plain
+    /// stores ([`transpose_f32`]).
     #[inline(always)]
     fn write_rows<const N: usize>(
         dst: &mut [Self],
         rows: &[Lanes<N>; 16],
         staged: &mut [[f64; 16]; N],
-        stream: bool,
+        _stream: bool,
     ) -> bool {
         match <&mut [Self; N]>::try_from(&mut *dst) {
-            Ok(whole) if !stream => {
+            Ok(whole) => {
                 // Built in place (no zeroing per block).
                 let narrow: [[f32; N]; 16] =
                     std::array::from_fn(|e| std::array::from_fn(|j| rows[e][j] as f32));
@@ -1275,45 +1262,31 @@ impl MuellerOut for [f32; 16] {
                 transpose_f32(&narrow, whole);
                 overflow
             }
-            _ => {
-                transpose(rows, staged);
-                Self::write_block(dst, staged, stream)
+            Err(_) => {
+                transpose(rows, staged, false);
+                Self::write_block(dst, staged)
             }
         }
     }
 
     #[inline(always)]
-    fn write_block(dst: &mut [Self], src: &[[f64; 16]], stream: bool) -> bool {
+    fn write_block(dst: &mut [Self], src: &[[f64; 16]]) -> bool {
         let n = dst.len().min(src.len());
         // Flat, so that the conversion is one vectorized loop.
         let (dst, src) = (dst[..n].as_flattened_mut(), src[..n].as_flattened());
         let mut overflow = false;
-        #[cfg(target_arch = "x86_64")]
-        if stream && (dst.as_ptr() as usize).is_multiple_of(16) {
-            use std::arch::x86_64::{_mm_loadu_ps, _mm_stream_ps};
-            let mut staged = [0.0f32; 16 * BLOCK];
-            for (d, s) in dst.chunks_mut(16 * BLOCK).zip(src.chunks(16 * BLOCK)) {
-                for (o, x) in staged.iter_mut().zip(s) {
-                    *o = *x as f32;
-                    overflow |= o.is_infinite() & x.is_finite();
-                }
-                for i in (0..d.len()).step_by(4) {
-                    // SAFETY: `d` and `staged` hold at least `d.len()` f32 (a multiple of 16),
-                    // `d` is 16-byte aligned (so is every offset of 4 f32 from it), and SSE is
-                    // part of x86-64.
-                    unsafe {
-                        _mm_stream_ps(d.as_mut_ptr().add(i), _mm_loadu_ps(staged.as_ptr().add(i)))
-                    };
-                }
-            }
-            return overflow;
-        }
         for (o, x) in dst.iter_mut().zip(src) {
             *o = *x as f32;
             overflow |= o.is_infinite() & x.is_finite();
         }
         overflow
     }
+}
+
+/// Whether non-temporal stores can go to `dst`: 16-byte aligned (every row of a block then is).
+#[inline(always)]
+fn stream_to<T>(dst: &[T], stream: bool) -> bool {
+    stream && (dst.as_ptr() as usize).is_multiple_of(16)
 }
 
 /// Where a job's results go: the caller's row-major array ([`Rows`]) or its planes
@@ -1372,7 +1345,7 @@ impl<O: MuellerOut> Sink for Rows<'_, O> {
     }
     #[inline(always)]
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
-        O::write_block(&mut self.0[i..i + 1], std::slice::from_ref(v), false)
+        O::write_block(&mut self.0[i..i + 1], std::slice::from_ref(v))
     }
 }
 
@@ -1493,11 +1466,17 @@ impl SinkF32 for Planes<'_, f32> {
 /// 16 rows of lanes (entry-major) into row-major 4×4 results (element-major): with AVX
 /// register shuffles in 4×4 tiles where the CPU has them.
 #[inline(always)]
-fn transpose<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N]) {
+fn transpose<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N], stream: bool) {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx") {
-        // SAFETY: the CPU has AVX.
-        unsafe { transpose_avx(rows, out) };
+        // SAFETY: the CPU has AVX; with streaming, `out` is 16-byte aligned.
+        unsafe {
+            if stream_to(out, stream) {
+                transpose_avx::<N, true>(rows, out);
+            } else {
+                transpose_avx::<N, false>(rows, out);
+            }
+        }
         return;
     }
     transpose_tail(rows, out, 0);
@@ -1518,6 +1497,8 @@ fn transpose_tail<T: Copy, const N: usize>(
 }
 
 /// [`transpose`] of single-precision rows: with SSE shuffles (part of x86-64) in 4×4 tiles.
+/// Always plain stores: non-temporal ones (16 bytes at a time) made the float32 output
+/// slower (docs/model.md §12).
 #[inline(always)]
 fn transpose_f32<const N: usize>(rows: &[[f32; N]; 16], out: &mut [[f32; 16]; N]) {
     #[cfg(not(target_arch = "x86_64"))]
@@ -1557,17 +1538,26 @@ fn transpose_f32<const N: usize>(rows: &[[f32; N]; 16], out: &mut [[f32; 16]; N]
 /// memory), then one unpack per output row. No cross-lane permute: `vperm2f128` is 8 µops on
 /// AMD's Zen 1 (and 1 on Intel), a 128-bit insert from memory about as cheap as a load on both.
 ///
+/// With `STREAM`, by non-temporal stores (256-bit where `out` is 32-byte aligned, else its
+/// 128-bit halves).
+///
 /// # Safety
-/// The CPU must support AVX.
+/// The CPU must support AVX; with `STREAM`, `out` must be 16-byte aligned.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx")]
 #[inline]
-unsafe fn transpose_avx<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 16]; N]) {
+unsafe fn transpose_avx<const N: usize, const STREAM: bool>(
+    rows: &[Lanes<N>; 16],
+    out: &mut [[f64; 16]; N],
+) {
     use std::arch::x86_64::{
-        _mm256_castpd128_pd256, _mm256_insertf128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd,
-        _mm256_unpacklo_pd, _mm_loadu_pd,
+        _mm256_castpd128_pd256, _mm256_castpd256_pd128, _mm256_extractf128_pd,
+        _mm256_insertf128_pd, _mm256_storeu_pd, _mm256_stream_pd, _mm256_unpackhi_pd,
+        _mm256_unpacklo_pd, _mm_loadu_pd, _mm_stream_pd,
     };
     let whole = N - N % 2;
+    // Every row of `out` is 128 bytes, so one test covers the block.
+    let aligned32 = (out.as_ptr() as usize).is_multiple_of(32);
     for j0 in (0..whole).step_by(2) {
         for e0 in (0..16).step_by(4) {
             // SAFETY: j0 + 2 ≤ N and e0 + 4 ≤ 16: every load and store is in bounds.
@@ -1584,8 +1574,21 @@ unsafe fn transpose_avx<const N: usize>(rows: &[Lanes<N>; 16], out: &mut [[f64; 
                     _mm256_castpd128_pd256(_mm_loadu_pd(rows[e0 + 1][j0..].as_ptr())),
                     _mm_loadu_pd(rows[e0 + 3][j0..].as_ptr()),
                 );
-                _mm256_storeu_pd(out[j0][e0..].as_mut_ptr(), _mm256_unpacklo_pd(a, b));
-                _mm256_storeu_pd(out[j0 + 1][e0..].as_mut_ptr(), _mm256_unpackhi_pd(a, b));
+                let (lo, hi) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+                let (p, q) = (out[j0][e0..].as_mut_ptr(), out[j0 + 1][e0..].as_mut_ptr());
+                if STREAM && aligned32 {
+                    _mm256_stream_pd(p, lo);
+                    _mm256_stream_pd(q, hi);
+                } else if STREAM {
+                    // 16-byte aligned: the halves.
+                    _mm_stream_pd(p, _mm256_castpd256_pd128(lo));
+                    _mm_stream_pd(p.add(2), _mm256_extractf128_pd::<1>(lo));
+                    _mm_stream_pd(q, _mm256_castpd256_pd128(hi));
+                    _mm_stream_pd(q.add(2), _mm256_extractf128_pd::<1>(hi));
+                } else {
+                    _mm256_storeu_pd(out[j0][e0..].as_mut_ptr(), lo);
+                    _mm256_storeu_pd(out[j0 + 1][e0..].as_mut_ptr(), hi);
+                }
             }
         }
     }
