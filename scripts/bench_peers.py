@@ -13,10 +13,10 @@
    agreement asked is 1e-4 absolute.
 2. Throughput: Mitsuba's `llvm_ad_mono_polarized` `bsdf.eval` (the full Mueller matrix × cosθo,
    float32) over N geometries in one launch (`dr.eval`), the JIT compiled and warm, against
-   polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays) on the
-   same geometries, and its `mueller_directions` on Mitsuba's own float32 direction vectors,
-   both on every core; and `polbrdf bench` (the Rust batch API) when --cli is
-   given. Medians of R repeats; prints the ratios.
+   polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays, also in
+   the planar layout, Mitsuba's own) on the same geometries, and its `mueller_directions` on
+   Mitsuba's own float32 direction vectors, both on every core; and `polbrdf bench` (the Rust
+   batch API) when --cli is given. Medians of R repeats; prints the ratios.
 """
 
 from __future__ import annotations
@@ -181,6 +181,8 @@ def main() -> None:
     mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
     out64 = np.empty((n, 4, 4))
     out32 = np.empty((n, 4, 4), dtype=np.float32)
+    planes64 = np.empty((4, 4, n))
+    planes32 = np.empty((4, 4, n), dtype=np.float32)
     cases = [
         (f"Mitsuba {mit.version} llvm_ad_mono_polarized roughconductor eval (float32)", mit.eval),
         (
@@ -194,6 +196,16 @@ def main() -> None:
         (
             "polbrdf.mueller float32 (precision), out= reused",
             lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out32),
+        ),
+        (
+            "polbrdf.mueller float64, layout=\"planar\" (Mitsuba's), out= reused",
+            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes64,
+                                    layout="planar"),
+        ),
+        (
+            "polbrdf.mueller float32, layout=\"planar\", out= reused",
+            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes32,
+                                    layout="planar"),
         ),
         (
             "polbrdf.mueller_directions float64 (Mitsuba's vectors), out= reused",

@@ -212,6 +212,7 @@ def mueller(
     wavelength_um: ArrayLike | None = None,
     out: NDArray[np.floating] | None = None,
     precision: str | type | np.dtype | None = None,
+    layout: str = "interleaved",
 ) -> NDArray[np.floating]:
     """The pBRDF F: the 4×4 Mueller-matrix BRDF (eq. 9 corrected), in sr⁻¹, psps basis.
 
@@ -232,19 +233,27 @@ def mueller(
         not depend on it.
     out : ndarray, optional
         An array to write the result into (NumPy's ``out=`` convention), returned: shape
-        ``broadcast_shape + (4, 4)``, dtype float64 or float32 (the precision), C-contiguous
-        and writeable. Reusing it saves the allocation and the page faults of a new array.
+        ``broadcast_shape + (4, 4)`` (``(4, 4) + broadcast_shape`` for ``layout="planar"``),
+        dtype float64 or float32 (the precision), C-contiguous and writeable. Reusing it saves
+        the allocation and the page faults of a new array.
     precision : {"float64", "float32"} or dtype, optional
         The result's dtype (default float64, or ``out``'s dtype). float32 computes the model
         in single precision, every entry within 1e-5·F00 of float64 (docs/model.md §12; the
         few elements where single precision would not reach that are computed in float64 and
         rounded) — about twice as fast, half the memory. Fits and the reference use float64.
+    layout : {"interleaved", "planar"}
+        ``"interleaved"`` (default): the 4×4 matrix last, ``F[..., i, j]``. ``"planar"``: the
+        matrix first, ``F[i, j, ...]``, each entry a contiguous array over the geometries —
+        Mitsuba's and Dr.Jit's layout of a Mueller matrix, and a table stored entry by entry
+        (docs/model.md §12, "Layouts"). The same values bit for bit, with no transpose; not
+        faster to compute.
 
     Returns
     -------
     ndarray of float64 (or float32), shape ``broadcast_shape + (4, 4)``
         ``F[..., i, j]`` in sr⁻¹; ``F[..., 0, 0]`` is the scalar BRDF. Zero where a direction
-        is at or below the horizon. ``out`` when given.
+        is at or below the horizon. ``out`` when given. With ``layout="planar"``, shape
+        ``(4, 4) + broadcast_shape`` and ``F[i, j, ...]``.
 
     Raises
     ------
@@ -252,19 +261,22 @@ def mueller(
         For NaN/inf angles or zenith angles outside [0°, 180°], naming the argument, value and
         flat index; when the arguments do not broadcast; for an unknown precision, an ``out``
         of the wrong shape, dtype or layout or not writeable; in float32, for an entry beyond
-        float32's range (|F| > 3.4e38 sr⁻¹).
+        float32's range (|F| > 3.4e38 sr⁻¹); for an unknown ``layout``.
     TypeError
         For a non-Material ``material``, non-real angles or an ``out`` that is not an ndarray.
     """
     dtype = _precision(precision, out)
+    planar = _planar(layout)
     angles = (theta_i, phi_i, theta_r, phi_r)
     shape, flat = _flatten(material, _args(angles, wavelength_um), singles=True)
-    rows = None if out is None else _out_rows(out, shape + (4, 4), dtype)
+    rows = None if out is None else _out_rows(out, shape, dtype, planar)
     try:
-        res = _polbrdf.mueller_flat(material, *flat[:4], degrees, _wl(flat), rows, dtype.name)
+        res = _polbrdf.mueller_flat(
+            material, *flat[:4], degrees, _wl(flat), rows, dtype.name, planar
+        )
     except ValueError as e:
         raise _located(e, shape) from None
-    return out if out is not None else res.reshape(shape + (4, 4))
+    return out if out is not None else res.reshape(_matrix_shape(shape, planar))
 
 
 def mueller_directions(
@@ -275,6 +287,7 @@ def mueller_directions(
     wavelength_um: ArrayLike | None = None,
     out: NDArray[np.floating] | None = None,
     precision: str | type | np.dtype | None = None,
+    layout: str = "interleaved",
 ) -> NDArray[np.floating]:
     """The pBRDF F at direction vectors: :func:`mueller` for callers that hold directions, as a
     renderer or ray tracer does (docs/model.md §9.11).
@@ -288,12 +301,13 @@ def mueller_directions(
     w_r : array_like, shape ``(..., 3)``
         Direction toward the detector, same frame; broadcast with ``w_i`` over the leading
         dimensions (a single vector stands for all without being copied).
-    wavelength_um, out, precision
+    wavelength_um, out, precision, layout
         As for :func:`mueller` (``wavelength_um`` broadcast with the leading dimensions).
 
     Returns
     -------
-    ndarray of float64 (or float32), shape ``broadcast_shape + (4, 4)``
+    ndarray of float64 (or float32), shape ``broadcast_shape + (4, 4)`` (``(4, 4) +
+    broadcast_shape`` for ``layout="planar"``)
         The result of :func:`mueller` at ``θ = atan2(√(x² + y²), z)``, ``φ = atan2(y, x)``, and
         ``φ = 0`` for a vector along the normal; computed from the vectors without a sine or
         cosine. Zero where ``z ≤ 0`` (at or below the horizon).
@@ -309,6 +323,7 @@ def mueller_directions(
     """
     _check_material(material)
     dtype = _precision(precision, out)
+    planar = _planar(layout)
     wi, wr = _real("w_i", w_i), _real("w_r", w_r)
     for name, w in (("w_i", wi), ("w_r", wr)):
         if w.ndim == 0 or w.shape[-1] != 3:
@@ -335,14 +350,14 @@ def mueller_directions(
     flat_wl = None
     if wl is not None:
         flat_wl = np.ascontiguousarray(np.broadcast_to(wl, shape), dtype=np.float64).reshape(-1)
-    rows = None if out is None else _out_rows(out, shape + (4, 4), dtype)
+    rows = None if out is None else _out_rows(out, shape, dtype, planar)
     try:
         res = _polbrdf.mueller_directions_flat(
-            material, vectors(wi), vectors(wr), flat_wl, rows, dtype.name
+            material, vectors(wi), vectors(wr), flat_wl, rows, dtype.name, planar
         )
     except ValueError as e:
         raise _located(e, shape) from None
-    return out if out is not None else res.reshape(shape + (4, 4))
+    return out if out is not None else res.reshape(_matrix_shape(shape, planar))
 
 
 def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) -> np.dtype:
@@ -365,16 +380,32 @@ def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) 
     return dtype
 
 
-def _out_rows(out: np.ndarray, shape: tuple[int, ...], dtype: np.dtype) -> np.ndarray:
-    """The ``(n, 16)`` view of a caller's output array, after checking it (shape, dtype,
-    C-contiguous, writeable): numpy's ``out=`` convention, without copies."""
+def _planar(layout: str) -> bool:
+    """Whether ``layout`` is ``"planar"`` (else ``"interleaved"``)."""
+    if layout not in ("interleaved", "planar"):
+        raise ValueError(f"unknown layout {layout!r}: expected \"interleaved\" or \"planar\"")
+    return layout == "planar"
+
+
+def _matrix_shape(shape: tuple[int, ...], planar: bool) -> tuple[int, ...]:
+    """The shape of a pBRDF array over ``shape``: the 4×4 matrix last, or first when planar."""
+    return (4, 4) + shape if planar else shape + (4, 4)
+
+
+def _out_rows(
+    out: np.ndarray, shape: tuple[int, ...], dtype: np.dtype, planar: bool = False
+) -> np.ndarray:
+    """The ``(n, 16)`` (planar: ``(16, n)``) view of a caller's output array for a result over
+    ``shape``, after checking it (shape, dtype, C-contiguous, writeable): numpy's ``out=``
+    convention, without copies."""
+    shape = _matrix_shape(shape, planar)
     if out.shape != shape:
         raise ValueError(f"`out` has shape {out.shape}, the result has shape {shape}")
     if not out.flags.c_contiguous:
         raise ValueError("`out` must be C-contiguous")
     if not out.flags.writeable:
         raise ValueError("`out` must be writeable")
-    return out.reshape(-1, 16)
+    return out.reshape(16, -1) if planar else out.reshape(-1, 16)
 
 
 def index(material: Material, wavelength_um: ArrayLike) -> NDArray[np.complex128]:

@@ -138,9 +138,11 @@ def mueller_flat(
     wavelength_um: NDArray[np.float64] | None = None,
     out: NDArray[np.floating] | None = None,
     precision: str = "float64",
+    planar: bool = False,
 ) -> NDArray[np.floating]:
-    """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16), written
-    into ``out`` when given (an (n, 16) C-contiguous array of the precision's dtype)."""
+    """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16) — (16, n)
+    of planes when ``planar`` —, written into ``out`` when given (a C-contiguous array of that
+    shape and the precision's dtype)."""
 
 def mueller_directions_flat(
     material: Material,
@@ -149,9 +151,10 @@ def mueller_directions_flat(
     wavelength_um: NDArray[np.float64] | None = None,
     out: NDArray[np.floating] | None = None,
     precision: str = "float64",
+    planar: bool = False,
 ) -> NDArray[np.floating]:
     """pBRDF (sr⁻¹) at n pairs of direction vectors, (n, 3) C-contiguous float64 arrays (or
-    (1, 3) for all), shape (n, 16); ``out`` as for ``mueller_flat``."""
+    (1, 3) for all), shape (n, 16); ``out`` and ``planar`` as for ``mueller_flat``."""
 
 def brdf_dolp_flat(
     material: Material,

@@ -24,7 +24,8 @@ use polbrdf::analysis::emission::{emissivities, Emissivity};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{TableSky, ZenithProfile};
 use polbrdf::analysis::thermal;
-use polbrdf::engine::batch::try_for_chunks;
+use polbrdf::engine::batch::{try_for_chunks, Split};
+use polbrdf::engine::Planes;
 use polbrdf::engine::{Kernel, Precision};
 use polbrdf::model::KeyValue;
 use polbrdf::Engine;
@@ -747,6 +748,48 @@ fn spread<'a>(
 trait Store<T>: Sync {
     /// Fills `rows` for `batch`; true when an entry overflowed f32.
     fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[T; 16]]) -> bool;
+    /// Fills `planes` for `batch` (the planar layout); as [`Store::store`].
+    fn store_planes(&self, k: &Kernel<'_>, batch: &impl Batch, planes: &mut Planes<'_, T>) -> bool;
+}
+
+/// Where a Python pBRDF call writes: one row-major 4×4 per geometry (an `(n, 16)` array), or
+/// 16 planes (a `(16, n)` array, `layout="planar"`). (The planes' 16 slices make that variant
+/// 256 bytes; a target is made once per chunk, so its size does not matter.)
+#[allow(clippy::large_enum_variant)]
+enum Target<'a, T> {
+    Rows(&'a mut [[T; 16]]),
+    Planes(Planes<'a, T>),
+}
+
+impl<T: Send> Split for Target<'_, T> {
+    fn len(&self) -> usize {
+        match self {
+            Target::Rows(r) => r.len(),
+            Target::Planes(p) => p.len(),
+        }
+    }
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        match self {
+            Target::Rows(r) => {
+                let (a, b) = r.split_at_mut(mid);
+                (Target::Rows(a), Target::Rows(b))
+            }
+            Target::Planes(p) => {
+                let (a, b) = p.split_at(mid);
+                (Target::Planes(a), Target::Planes(b))
+            }
+        }
+    }
+}
+
+impl<T> Target<'_, T> {
+    /// Fills the target through `store`; as [`Store::store`].
+    fn store(self, store: &impl Store<T>, k: &Kernel<'_>, batch: &impl Batch) -> bool {
+        match self {
+            Target::Rows(r) => store.store(k, batch, r),
+            Target::Planes(mut p) => store.store_planes(k, batch, &mut p),
+        }
+    }
 }
 
 /// [`Store`] in float64; `stream`: with non-temporal stores, as the engine writes an output of
@@ -772,6 +815,10 @@ impl Store<f64> for StoreF64 {
         }
         false
     }
+    fn store_planes(&self, k: &Kernel<'_>, b: &impl Batch, planes: &mut Planes<'_, f64>) -> bool {
+        k.mueller_planes_into(b, 0, planes);
+        false
+    }
 }
 
 /// [`Store`] in float32.
@@ -781,6 +828,9 @@ impl Store<f32> for StoreF32 {
     fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f32; 16]]) -> bool {
         k.mueller_f32_into(batch, 0, rows)
     }
+    fn store_planes(&self, k: &Kernel<'_>, b: &impl Batch, planes: &mut Planes<'_, f32>) -> bool {
+        k.mueller_planes_f32_into(b, 0, planes)
+    }
 }
 
 /// Fills `rows` (one row-major 4×4 per geometry) through the core's parallel driver
@@ -788,8 +838,8 @@ impl Store<f32> for StoreF32 {
 /// `chunk(start, rows)` evaluates the part at `start` through the serial kernel (true when an
 /// entry overflowed f32), with the stores the batch API would use (`StoreF64`).
 fn mueller_chunks<T: Send>(
-    rows: &mut [[T; 16]],
-    chunk: impl Fn(usize, &mut [[T; 16]]) -> Result<bool, polbrdf::Error> + Sync,
+    rows: Target<'_, T>,
+    chunk: impl Fn(usize, Target<'_, T>) -> Result<bool, polbrdf::Error> + Sync,
 ) -> Result<(), polbrdf::Error> {
     let overflow = try_for_chunks(rows, chunk)?;
     if overflow {
@@ -804,14 +854,13 @@ fn mueller_rows<T: Send>(
     input: [&[f64]; 4],
     wl: Option<&[f64]>,
     degrees: bool,
-    rows: &mut [[T; 16]],
+    rows: Target<'_, T>,
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
     mueller_chunks(rows, |start, rows| {
-        chunk_batch(input, start, rows.len(), degrees, |b| {
-            with_engine(m, wl, start, rows.len(), |e| {
-                Ok(store.store(e.kernel(), b, rows))
-            })
+        let len = rows.len();
+        chunk_batch(input, start, len, degrees, |b| {
+            with_engine(m, wl, start, len, |e| Ok(rows.store(store, e.kernel(), b)))
         })
     })
 }
@@ -823,7 +872,7 @@ fn direction_rows<T: Send>(
     m: &Material,
     [w_i, w_r]: [&[[f64; 3]]; 2],
     wl: Option<&[f64]>,
-    rows: &mut [[T; 16]],
+    rows: Target<'_, T>,
     store: &impl Store<T>,
 ) -> Result<(), polbrdf::Error> {
     mueller_chunks(rows, |start, rows| {
@@ -844,26 +893,28 @@ fn direction_rows<T: Send>(
             other => other,
         })?;
         with_engine(m, wl, start, len, |e| {
-            Ok(store.store(e.kernel(), &batch, rows))
+            Ok(rows.store(store, e.kernel(), &batch))
         })
     })
 }
 
-/// A caller's output array for `n` pBRDFs: an `(n, 16)` C-contiguous, writeable array of the
-/// precision's dtype (the Python layer checks the user's array and passes this view of it).
+/// A caller's output array for `n` pBRDFs: an `(n, 16)` (or, planar, `(16, n)`) C-contiguous,
+/// writeable array of the precision's dtype (the Python layer checks the user's array and
+/// passes this view of it).
 fn out_rows<'py, T: numpy::Element>(
     out: &Bound<'py, PyAny>,
-    n: usize,
+    shape: [usize; 2],
     dtype: &str,
 ) -> PyResult<Bound<'py, PyArray2<T>>> {
+    let [a0, a1] = shape;
     let a = out.cast::<PyArray2<T>>().map_err(|_| {
         PyValueError::new_err(format!(
-            "`out` must be a 2-D {dtype} array of shape ({n}, 16)"
+            "`out` must be a 2-D {dtype} array of shape ({a0}, {a1})"
         ))
     })?;
-    if a.shape() != [n, 16] || !a.is_c_contiguous() {
+    if a.shape() != shape || !a.is_c_contiguous() {
         return Err(PyValueError::new_err(format!(
-            "`out` must be a C-contiguous {dtype} array of shape ({n}, 16), got shape {:?}",
+            "`out` must be a C-contiguous {dtype} array of shape ({a0}, {a1}), got shape {:?}",
             a.shape()
         )));
     }
@@ -874,9 +925,10 @@ fn out_rows<'py, T: numpy::Element>(
 /// geometry, in `precision` (`"float64"`, or `"float32"`: computed in single precision, every
 /// entry within `1e-5·F00 + 2⁻¹⁵⁰` of float64, docs/model.md §12), written into `out` when
 /// given (an `(n, 16)` C-contiguous array of that dtype, which is returned). The Python layer
-/// reshapes it to `shape + (4, 4)`.
+/// reshapes it to `shape + (4, 4)`. With `planar`, a `(16, n)` array of 16 planes instead
+/// (`Planes`), which the Python layer reshapes to `(4, 4) + shape`.
 #[pyfunction]
-#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None, out=None, precision="float64"))]
+#[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None, out=None, precision="float64", planar=false))]
 #[allow(clippy::too_many_arguments)]
 fn mueller_flat<'py>(
     py: Python<'py>,
@@ -889,6 +941,7 @@ fn mueller_flat<'py>(
     wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
     out: Option<Bound<'py, PyAny>>,
     precision: &str,
+    planar: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let precision: Precision = precision.parse().map_err(|e| core_err(py, &e))?;
     let input = slices([&theta_i, &phi_i, &theta_r, &phi_r])?;
@@ -897,10 +950,10 @@ fn mueller_flat<'py>(
     let wl = wavelength_slice(&wavelength_um, n)?;
     let m = &material.inner;
     match precision {
-        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
+        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", planar, |rows| {
             mueller_rows(m, input, wl, degrees, rows, &StoreF64::new(m, n))
         }),
-        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
+        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
             mueller_rows(m, input, wl, degrees, rows, &StoreF32)
         }),
     }
@@ -926,7 +979,8 @@ fn vectors<'a>(a: &'a PyReadonlyArray2<'_, f64>, name: &str) -> PyResult<&'a [[f
 /// each vector in the surface frame, of any length within 1e-15..1e15; otherwise as
 /// [`mueller_flat`].
 #[pyfunction]
-#[pyo3(signature = (material, w_i, w_r, wavelength_um=None, out=None, precision="float64"))]
+#[pyo3(signature = (material, w_i, w_r, wavelength_um=None, out=None, precision="float64", planar=false))]
+#[allow(clippy::too_many_arguments)]
 fn mueller_directions_flat<'py>(
     py: Python<'py>,
     material: &PyMaterial,
@@ -935,6 +989,7 @@ fn mueller_directions_flat<'py>(
     wavelength_um: Option<PyReadonlyArray1<'py, f64>>,
     out: Option<Bound<'py, PyAny>>,
     precision: &str,
+    planar: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let precision: Precision = precision.parse().map_err(|e| core_err(py, &e))?;
     let (wi, wr) = (vectors(&w_i, "w_i")?, vectors(&w_r, "w_r")?);
@@ -957,36 +1012,42 @@ fn mueller_directions_flat<'py>(
     let wl = wavelength_slice(&wavelength_um, n)?;
     let m = &material.inner;
     match precision {
-        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", |rows| {
+        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", planar, |rows| {
             direction_rows(m, [wi, wr], wl, rows, &StoreF64::new(m, n))
         }),
-        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", |rows| {
+        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
             direction_rows(m, [wi, wr], wl, rows, &StoreF32)
         }),
     }
 }
 
 /// [`mueller_flat`] in the element type `T` (numpy's `dtype`): `out` (checked by [`out_rows`])
-/// or a new `(n, 16)` array, filled by `fill` ([`mueller_rows`], [`direction_rows`]) with the
-/// GIL released.
+/// or a new `(n, 16)` array — `(16, n)` when `planar` — filled by `fill` ([`mueller_rows`],
+/// [`direction_rows`]) with the GIL released.
 #[allow(clippy::too_many_arguments)]
 fn mueller_array<'py, T: numpy::Element + Send>(
     py: Python<'py>,
     out: Option<Bound<'py, PyAny>>,
     n: usize,
     dtype: &str,
-    fill: impl FnOnce(&mut [[T; 16]]) -> Result<(), polbrdf::Error> + Send,
+    planar: bool,
+    fill: impl FnOnce(Target<'_, T>) -> Result<(), polbrdf::Error> + Send,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let shape = if planar { [16, n] } else { [n, 16] };
     let arr = match &out {
-        Some(o) => out_rows::<T>(o, n, dtype)?,
-        None => zeros2::<T>(py, n, 16)?,
+        Some(o) => out_rows::<T>(o, shape, dtype)?,
+        None => zeros2::<T>(py, shape[0], shape[1])?,
     };
     let mut rw = arr.try_readwrite().map_err(|e| {
         PyValueError::new_err(format!("`out` must be writeable and not in use: {e}"))
     })?;
     let flat = rw.as_slice_mut().expect("checked C-contiguous");
-    let (rows, _) = flat.as_chunks_mut::<16>();
-    py.detach(|| fill(rows)).map_err(|e| core_err(py, &e))?;
+    let target = if planar {
+        Target::Planes(Planes::new(flat, n).map_err(|e| core_err(py, &e))?)
+    } else {
+        Target::Rows(flat.as_chunks_mut::<16>().0)
+    };
+    py.detach(|| fill(target)).map_err(|e| core_err(py, &e))?;
     drop(rw);
     Ok(arr.into_any())
 }

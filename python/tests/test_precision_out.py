@@ -143,3 +143,47 @@ def test_scalar_arguments_broadcast_in_the_engine(paint: polbrdf.Material) -> No
     with pytest.raises(ValueError, match="theta_r") as e:
         polbrdf.mueller(paint, ti, pi, np.nan, pr)
     assert e.value.index == 0
+
+
+@pytest.mark.parametrize("precision", ["float64", "float32"])
+def test_planar_layout_holds_the_same_bits(paint: polbrdf.Material, precision: str) -> None:
+    # layout="planar": F[i, j, ...] — the interleaved result's matrix axes moved first, bit for
+    # bit, for angles (broadcast, multi-dimensional) and direction vectors, with and without
+    # out=, on both sides of the serial driver's bound (2048 elements).
+    for n in (1, 2048, 5001):
+        g = _geometries(n, seed=n)
+        rows = polbrdf.mueller(paint, *g, precision=precision)
+        planes = polbrdf.mueller(paint, *g, precision=precision, layout="planar")
+        assert planes.shape == (4, 4, n) and planes.dtype == rows.dtype
+        assert planes.flags.c_contiguous
+        np.testing.assert_array_equal(planes, np.moveaxis(rows, (-2, -1), (0, 1)))
+        out = np.full((4, 4, n), np.nan, dtype=precision)
+        assert polbrdf.mueller(paint, *g, out=out, layout="planar") is out
+        np.testing.assert_array_equal(out, planes)
+    ti = np.linspace(0.0, 80.0, 7)[:, None]
+    tr = np.linspace(0.0, 80.0, 5)[None, :]
+    rows = polbrdf.mueller(paint, ti, 0.0, tr, 180.0, precision=precision)
+    planes = polbrdf.mueller(paint, ti, 0.0, tr, 180.0, precision=precision, layout="planar")
+    assert planes.shape == (4, 4, 7, 5)
+    np.testing.assert_array_equal(planes, np.moveaxis(rows, (-2, -1), (0, 1)))
+    rng = np.random.default_rng(3)
+    w_i = rng.normal(size=(3000, 3))
+    w_r = rng.normal(size=(3000, 3))
+    w_i[:, 2], w_r[:, 2] = np.abs(w_i[:, 2]), np.abs(w_r[:, 2])
+    rows = polbrdf.mueller_directions(paint, w_i, w_r, precision=precision)
+    planes = polbrdf.mueller_directions(paint, w_i, w_r, precision=precision, layout="planar")
+    np.testing.assert_array_equal(planes, np.moveaxis(rows, (-2, -1), (0, 1)))
+
+
+def test_planar_layout_and_its_out_are_checked(paint: polbrdf.Material) -> None:
+    t = np.array([10.0, 20.0, 30.0])
+    with pytest.raises(ValueError, match="layout"):
+        polbrdf.mueller(paint, t, 0.0, t, 180.0, layout="soa")
+    with pytest.raises(ValueError, match="layout"):
+        polbrdf.mueller_directions(paint, [0.0, 0.0, 1.0], [0.0, 0.0, 1.0], layout="rows")
+    # An interleaved out for a planar result (and the reverse) is refused by its shape.
+    with pytest.raises(ValueError, match=r"shape \(4, 4, 3\)"):
+        polbrdf.mueller(paint, t, 0.0, t, 180.0, out=np.empty((3, 4, 4)), layout="planar")
+    with pytest.raises(ValueError, match=r"shape \(3, 4, 4\)"):
+        polbrdf.mueller(paint, t, 0.0, t, 180.0, out=np.empty((4, 4, 3)))
+    assert polbrdf.mueller(paint, t[:0], 0.0, t[:0], 180.0, layout="planar").shape == (4, 4, 0)
