@@ -425,29 +425,30 @@ def bad_node_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         ),
         (
             lambda: polbrdf.radiance(
-                PAINT, 10, 0, sky="table",
-                sky_table=(TABLE[0][:-1], TABLE[1], TABLE[2][:-1]), **AT10,
-            ),  # fmt: skip
+                PAINT, 10, 0, sky="table", sky_table=(TABLE[0][:-1], TABLE[1], TABLE[2][:-1]), **AT10
+            ),
             r"`sky_table`: .*0° to 90°",
         ),
         (
             lambda: polbrdf.radiance(
-                PAINT, 10, 0, sky="table",
-                sky_table=(TABLE[0], [0, 45, 130, 180, 360], TABLE[2]), **AT10,
-            ),  # fmt: skip
+                PAINT, 10, 0, sky="table", sky_table=(TABLE[0], [0, 45, 130, 180, 360], TABLE[2]),
+                **AT10,
+            ),
             r"`sky_table`: invalid parameter `phi_deg` = 360 \(at index 4\)",
         ),
         (
             lambda: polbrdf.radiance(
-                PAINT, 10, 0, sky="table",
-                sky_table=(TABLE[0], [0, 45, 45, 180, 270], TABLE[2]), **AT10,
-            ),  # fmt: skip
+                PAINT, 10, 0, sky="table", sky_table=(TABLE[0], [0, 45, 45, 180, 270], TABLE[2]),
+                **AT10,
+            ),
             r"`sky_table`: invalid parameter `phi_deg` = 45 \(at index 2\).*increase",
         ),
         (
             lambda: polbrdf.radiance(PAINT, 10, 0, sky="table", sky_table=bad_node_table(), **AT10),
-            r"`sky_table`: invalid parameter `s0` = 1 \(at index 7\).*exceeds 1 "
-            r"\(node 7 is stokes\[1, 2\]\)",
+            (
+                r"`sky_table`: invalid parameter `s0` = 1 \(at index 7\).*exceeds 1 "
+                r"\(node 7 is stokes\[1, 2\]\)"
+            ),
         ),
         (
             lambda: polbrdf.radiance(

@@ -25,7 +25,7 @@ except ImportError as e:  # pragma: no cover - depends on the environment
     pytest.skip(f"Mitsuba 3 is not installed ({e}): pip install mitsuba", allow_module_level=True)
 try:
     mi.set_variant("llvm_ad_mono_polarized")
-except Exception as e:  # pragma: no cover - depends on the environment
+except Exception as e:  # noqa: BLE001 - Dr.Jit raises several kinds  # pragma: no cover
     pytest.skip(
         f"Mitsuba's LLVM backend is unavailable ({e}): install libLLVM (Debian: apt-get install "
         "libllvm19) or set DRJIT_LIBLLVM_PATH",
