@@ -1,6 +1,7 @@
 //! The parallel driver of the engine: every grid of the crate and of the tools around it goes
-//! through here. A batch is split into chunks of [`CHUNK`] elements, each evaluated by a
-//! [`Kernel`] on a rayon worker.
+//! through here ([`try_for_chunks`]). A batch is split into chunks of at most [`CHUNK`]
+//! elements, each evaluated by a [`Kernel`] on a rayon worker; a batch of at most
+//! [`SERIAL_MAX`] elements runs on the calling thread.
 
 use crate::engine::kernel::{IndexColumns, Kernel, Prepared, BLOCK};
 use crate::engine::planes::Planes;
@@ -83,9 +84,9 @@ impl<A: Split, B: Split> Split for (A, B) {
 
 /// The one parallel driver of the engine (and of the Python module): `f(start, part)` for
 /// consecutive parts of `out` of at most [`CHUNK`] elements each (about four per thread), on
-/// rayon's workers — or, for at most [`SERIAL_MAX`] elements, once for the whole on the calling
-/// thread; never for an empty `out`. Returns whether some call returned `Ok(true)` (an overflow of f32), or an error of
-/// one of them. Results do not depend on the split.
+/// rayon's workers — or, for at most [`SERIAL_MAX`] elements, once for the whole on the
+/// calling thread; never for an empty `out`. Returns whether some call returned `Ok(true)`
+/// (an overflow of f32), or an error of one of them. Results do not depend on the split.
 ///
 /// # Errors
 /// An error returned by `f`.

@@ -1297,7 +1297,7 @@ trait Sink {
     fn len(&self) -> usize;
 
     /// Elements `start .. start + len` from a block's 16 rows of lanes (entry-major), through
-    /// `staged` where needed; `stream` as [`MuellerOut::write_block`]. Returns whether a finite
+    /// `staged` where needed; `stream` as [`MuellerOut::write_rows`]. Returns whether a finite
     /// value became infinite (only a narrower format can overflow).
     fn put_rows<const N: usize>(
         &mut self,
@@ -1387,36 +1387,31 @@ fn copy_rows<T: Copy, const N: usize>(
     }
 }
 
-/// Planes take a block's rows as they are: 16 contiguous copies, no transpose (and no
-/// non-temporal stores: `stream` is ignored).
-impl Sink for Planes<'_, f64> {
+/// An element type of planar output: f64, or f32 with each entry rounded to the nearest
+/// (`as f32`, as [`MuellerOut`] for `[f32; 16]`).
+trait PlaneElem: Copy {
+    /// `x` in this type, and whether a finite `x` became infinite.
+    fn narrow(x: f64) -> (Self, bool);
+}
+
+impl PlaneElem for f64 {
     #[inline(always)]
-    fn len(&self) -> usize {
-        Planes::len(self)
-    }
-    #[inline(always)]
-    fn put_rows<const N: usize>(
-        &mut self,
-        start: usize,
-        len: usize,
-        rows: &[Lanes<N>; 16],
-        _staged: &mut [[f64; 16]; N],
-        _stream: bool,
-    ) -> bool {
-        copy_rows(&mut self.planes, start, len, rows);
-        false
-    }
-    #[inline(always)]
-    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
-        for (plane, x) in self.planes.iter_mut().zip(v) {
-            plane[i] = *x;
-        }
-        false
+    fn narrow(x: f64) -> (f64, bool) {
+        (x, false)
     }
 }
 
-/// Each entry rounded to the nearest f32, as [`MuellerOut`] for `[f32; 16]`.
-impl Sink for Planes<'_, f32> {
+impl PlaneElem for f32 {
+    #[inline(always)]
+    fn narrow(x: f64) -> (f32, bool) {
+        let y = x as f32;
+        (y, y.is_infinite() & x.is_finite())
+    }
+}
+
+/// Planes take a block's rows as they are: 16 contiguous runs, no transpose (and no
+/// non-temporal stores: `stream` is ignored).
+impl<T: PlaneElem> Sink for Planes<'_, T> {
     #[inline(always)]
     fn len(&self) -> usize {
         Planes::len(self)
@@ -1432,9 +1427,20 @@ impl Sink for Planes<'_, f32> {
     ) -> bool {
         let mut overflow = false;
         for (plane, row) in self.planes.iter_mut().zip(rows) {
-            for (o, x) in plane[start..start + len].iter_mut().zip(row) {
-                *o = *x as f32;
-                overflow |= o.is_infinite() & x.is_finite();
+            let dst = &mut plane[start..start + len];
+            // A whole block as a fixed-size loop (vector moves; no `memcpy` call per plane).
+            if let Ok(whole) = <&mut [T; N]>::try_from(&mut *dst) {
+                for (o, &x) in whole.iter_mut().zip(row) {
+                    let (y, over) = T::narrow(x);
+                    *o = y;
+                    overflow |= over;
+                }
+            } else {
+                for (o, &x) in dst.iter_mut().zip(row) {
+                    let (y, over) = T::narrow(x);
+                    *o = y;
+                    overflow |= over;
+                }
             }
         }
         overflow
@@ -1442,9 +1448,10 @@ impl Sink for Planes<'_, f32> {
     #[inline(always)]
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
         let mut overflow = false;
-        for (plane, x) in self.planes.iter_mut().zip(v) {
-            plane[i] = *x as f32;
-            overflow |= plane[i].is_infinite() & x.is_finite();
+        for (plane, &x) in self.planes.iter_mut().zip(v) {
+            let (y, over) = T::narrow(x);
+            plane[i] = y;
+            overflow |= over;
         }
         overflow
     }
