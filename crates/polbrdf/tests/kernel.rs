@@ -629,7 +629,8 @@ fn streamed_outputs_equal_cached_ones_bit_for_bit() {
     // Destinations at every 8-byte offset from a 64-byte boundary: 32-byte aligned (256-bit
     // non-temporal stores), 16-byte aligned (their halves), and not 16-byte aligned (plain
     // stores); an odd length ends in a partial block.
-    let mut flat = vec![f64::NAN; 16 * 101 + 8];
+    // The 64-byte boundary lies up to 7 elements in, and the shift adds up to 3 more.
+    let mut flat = vec![f64::NAN; 16 * 101 + 7 + 3];
     let base = (0..8)
         .find(|o| (flat.as_ptr() as usize + 8 * o).is_multiple_of(64))
         .unwrap();
