@@ -55,8 +55,9 @@ pub const BLOCK: usize = 16;
 /// EPYC, Zen 3, full-width 256-bit FMAs; `polbrdf bench`, 10⁶ `paint` geometries, medians of 7
 /// alternating runs): 1.12× on one thread, 1.01× on two, 1.44× / 1.19× from direction
 /// vectors; the peer's conductor through Python at 2·10⁶, medians of three paired ratios:
-/// 1.01× (rows), 1.10× (directions); identical bits. (On a Zen 1 class AVX2 host, which splits 256-bit operations
-/// in two, the gain was not consistent across materials.) The baseline level keeps [`BLOCK`].
+/// 1.01× (rows), 1.10× (directions); identical bits. (On a Zen 1 class AVX2 host, which
+/// splits 256-bit operations in two, the gain was not consistent across materials.) The
+/// baseline level keeps [`BLOCK`].
 const BLOCK_F32_WIDE: usize = 32;
 
 /// A complex refractive index per element, `N_j = n_j + i·k_j`, validated (each as by
