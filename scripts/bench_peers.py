@@ -1,6 +1,7 @@
 """polbrdf against Mitsuba 3 on the same random geometries (run by scripts/bench-peers).
 
-    python scripts/bench_peers.py [--count N] [--repeats R] [--cli PATH] [--check-only]
+    python scripts/bench_peers.py [--count N] [--repeats R] [--threads T] [--cli PATH]
+                                  [--check-only]
 
 1. The physics check: where the two models overlap — the specular (facet) term of a conductor —
    the DoLP for unpolarized light must agree. Mitsuba's `roughconductor` (Beckmann) is
@@ -15,7 +16,9 @@
    float32) over N geometries in one launch (`dr.eval`), the JIT compiled and warm, against
    polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays, also in
    the planar layout, Mitsuba's own) on the same geometries, and its `mueller_directions` on
-   Mitsuba's own float32 direction vectors, both on every core; and `polbrdf bench` (the Rust
+   Mitsuba's own float32 direction vectors, both on every core (or on T threads each with
+   --threads: Dr.Jit's `set_thread_count`, rayon's `RAYON_NUM_THREADS`; `--threads 1` compares
+   one core against one core, apart from how either scales); and `polbrdf bench` (the Rust
    batch API) when --cli is given. Medians of R repeats; prints the ratios.
 """
 
@@ -84,11 +87,13 @@ def medians_s(repeats: int, cases: list) -> list[float]:
 class Mitsuba:
     """Mitsuba 3's polarized rough conductor on fixed geometries (LLVM backend)."""
 
-    def __init__(self, ti, pi, tr, pr):
+    def __init__(self, ti, pi, tr, pr, threads: int | None = None):
         import drjit as dr
         import mitsuba as mi
 
         mi.set_variant("llvm_ad_mono_polarized")
+        if threads is not None:
+            dr.set_thread_count(threads)
         self.dr, self.mi = dr, mi
         self.version = mi.__version__
         self.bsdf = mi.load_dict(
@@ -161,9 +166,16 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--count", type=int, default=2_000_000)
     ap.add_argument("--repeats", type=int, default=7)
+    ap.add_argument("--threads", type=int, help="threads of each (default: every core)")
     ap.add_argument("--cli", help="the polbrdf binary, for `polbrdf bench` (the Rust batch API)")
     ap.add_argument("--check-only", action="store_true", help="only the physics check")
     args = ap.parse_args()
+    if args.threads is not None:
+        if args.threads < 1:
+            raise SystemExit("--threads must be at least 1")
+        # Read by rayon when its pool starts, at polbrdf's first parallel call (below).
+        os.environ["RAYON_NUM_THREADS"] = str(args.threads)
+    where = "all cores" if args.threads is None else f"{args.threads} thread(s) each"
 
     model, simd = cpu()
     print(f"CPU: {model}, {os.cpu_count()} logical CPUs, {simd}; load average {os.getloadavg()}")
@@ -177,7 +189,7 @@ def main() -> None:
 
     n, r = args.count, args.repeats
     ti, pi, tr, pr = geometries(n)
-    mit = Mitsuba(ti, pi, tr, pr)
+    mit = Mitsuba(ti, pi, tr, pr, args.threads)
     mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
     out64 = np.empty((n, 4, 4))
     out32 = np.empty((n, 4, 4), dtype=np.float32)
@@ -218,13 +230,15 @@ def main() -> None:
     ]
     times = medians_s(r, [f for _, f in cases])
     t_mit = times[0]
-    print(f"\n{n} random geometries, medians of {r} interleaved repeats, all cores; "
+    print(f"\n{n} random geometries, medians of {r} interleaved repeats, {where}; "
           f"M evaluations/s and the ratio to Mitsuba:")
     for (name, _), t in zip(cases, times):
         print(f"  {name:<72} {n / t / 1e6:7.1f} M/s  {t_mit / t:5.2f}x")
     if args.cli:
         cmd = [args.cli, "bench", "--json", "--count", str(min(n, 1_000_000)),
                "--repeats", str(r)]
+        if args.threads is not None:
+            cmd += ["--threads", str(args.threads)]
         doc = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
         best = doc["results"][-1]
         bw = doc.get("write_bandwidth", {})
