@@ -2,14 +2,16 @@
 //! in chunks so memory stays bounded for any number of rows.
 
 use crate::error::CliError;
-use polbrdf::Engine;
+use polbrdf::{DirectionBatch, Engine, Mueller};
 use polbrdf_io::csv_io::WAVELENGTH_COLUMN;
-use polbrdf_io::stream::{GeometryChunk, GeometryReader, ResultWriter, CHUNK_ROWS};
+use polbrdf_io::stream::{Geometries, GeometryChunk, GeometryReader, ResultWriter, CHUNK_ROWS};
 use polbrdf_io::Output;
 use std::path::Path;
 
-/// Runs `polbrdf eval`. A material with a spectral index needs the input's `wavelength_um`
-/// column: every row is evaluated with the index at its wavelength. The formats follow the
+/// Runs `polbrdf eval`. Each row's geometry is its angles or, in a table with the direction
+/// columns instead (`w_i_x … w_r_z`), its two direction vectors. A material with a spectral
+/// index needs the input's `wavelength_um` column: every row is evaluated with the index at
+/// its wavelength. The formats follow the
 /// extensions (`.npy`; `.arrow`/`.feather`: Arrow IPC file; `.arrows`: Arrow IPC stream; else
 /// CSV); the output is `-` (standard output) when absent. An error
 /// mid-stream leaves a regular output file as it was.
@@ -40,21 +42,35 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
     }
     while let Some(chunk) = reader.next_chunk(CHUNK_ROWS)? {
         let pbrdf = match &fixed {
-            Some(m) => Engine::new(m).pbrdf_of(&chunk.geometries)?,
+            Some(m) => pbrdf_of(&Engine::new(m), &chunk.geometries)?,
             None => {
                 let wl = chunk.wavelengths.as_deref().expect("checked above");
                 let m = spec
                     .build_at(wl[0])
                     .map_err(|e| wavelength_err(input, &chunk, e, true))?;
-                Engine::new(&m)
+                let engine = Engine::new(&m)
                     .with_wavelengths(wl)
-                    .map_err(|e| wavelength_err(input, &chunk, e, false))?
-                    .pbrdf_of(&chunk.geometries)?
+                    .map_err(|e| wavelength_err(input, &chunk, e, false))?;
+                pbrdf_of(&engine, &chunk.geometries)?
             }
         };
         writer.write_chunk(&chunk, &pbrdf)?;
     }
     Ok(writer.finish()?)
+}
+
+/// The pBRDF of a chunk's rows through the engine: from the angles, or from the direction
+/// vectors by the direction entry point (`DirectionBatch`: no angle on the way, a vector at or
+/// below the horizon gives a zero pBRDF).
+fn pbrdf_of(engine: &Engine<'_>, geometries: &Geometries) -> Result<Vec<Mueller>, CliError> {
+    Ok(match geometries {
+        Geometries::Angles(g) => engine.pbrdf_of(g)?,
+        Geometries::Directions { w_i, w_r } => {
+            let mut rows = vec![[0.0; 16]; w_i.len()];
+            engine.mueller_into(&DirectionBatch::new(w_i, w_r)?, &mut rows)?;
+            rows.iter().map(Mueller::from_row_major).collect()
+        }
+    })
 }
 
 /// A wavelength error of the engine, at the row it came from (`first`: of the chunk's first

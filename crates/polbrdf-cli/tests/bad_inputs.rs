@@ -418,6 +418,8 @@ fn arrow_cases() -> Vec<Case> {
         eval_arrow("arrow: input column named brdf", "g.feather", geometry_arrow(vec![("brdf", f(vec![Some(1.0), Some(2.0)]))]), 3, &["g.feather", "`brdf`", "rename"]),
         // Found by the arrow fuzz target: a footer block announcing 2⁵⁹ bytes (checked against the file's size before Arrow allocates it).
         eval_arrow("arrow: a block beyond the file", "g.arrow", include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(), 3, &["g.arrow", "block 1", "lies outside the file"]),
+        eval_arrow("arrow: direction component NaN", "g.arrow", arrow_bytes(&[("w_i_x", f(vec![Some(0.0)])), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(f64::NAN)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], false, 8), 3, &["g.arrow:1:", "`w_r_x`", "finite"]),
+        eval_arrow("arrow: text direction column", "g.arrows", arrow_bytes(&[("w_i_x", Arc::new(StringArray::from(vec!["0"])) as ArrayRef), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(0.0)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], true, 8), 3, &["g.arrows:1:", "`w_i_x`", "must hold numbers"]),
         eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
     ]
 }
@@ -509,6 +511,14 @@ fn table_common() -> Vec<Case> {
         eval_geometry("a 100 kB field in an angle column", t(&format!("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,{long_field}\n")), 3, &["g.csv:2", "`phi_r_deg`", "…"]),
         eval_geometry("-0, 90 and 180 degrees (valid)", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n-0,-0,-0,0\n90,0,30,180\n30,0,180,0\n"), 0, &[]),
         eval_geometry("output column name clash", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n30,0,30,180,1\n"), 3, &["g.csv", "`brdf`"]),
+        // Direction vectors instead of the angles (w_i_x … w_r_z).
+        eval_geometry("directions: valid, below the horizon too", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n0.5,0,0.8,-0.5,0,0.8\n0.5,0,0.8,0.5,0,-0.8\n"), 0, &[]),
+        eval_geometry("directions: and angles too", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n30,0,30,180,0,0,1,0,0,1\n"), 3, &["g.csv", "both the angle columns", "direction columns"]),
+        eval_geometry("directions: missing column", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y\n0,0,1,0,0\n"), 3, &["g.csv", "missing column", "w_r_z"]),
+        eval_geometry("directions: text for a component", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n0,0,1,0,zero,1\n"), 3, &["g.csv:2", "`w_r_y`", "expected a number"]),
+        eval_geometry("directions: NaN component", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n0,0,1,0,0,1\n0,0,NaN,0,0,1\n"), 3, &["g.csv:3", "`w_i_z`", "finite"]),
+        eval_geometry("directions: zero vector", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n0,0,1,0,0,0\n"), 3, &["g.csv:2", "`w_r_x, w_r_y, w_r_z`", "length"]),
+        eval_geometry("directions: a vector of length 1e300", t("w_i_x,w_i_y,w_i_z,w_r_x,w_r_y,w_r_z\n1e300,0,1e300,0,0,1\n"), 3, &["g.csv:2", "`w_i_x, w_i_y, w_i_z`", "length"]),
         case("input is a directory", vec![], &["eval", "--material", "paint", "--input", "{d}", "--output", "{d}/out.csv"], 4, &["cannot read"]),
         case("output directory missing", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/no/such/out.csv"], 4, &["cannot write", "out.csv"]),
         case("unknown preset", vec![("g.csv", t(GEO))], &["eval", "--material", "unobtainium", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 3, &["unobtainium", "paint"]),
@@ -621,6 +631,7 @@ fn table_common() -> Vec<Case> {
         case("eval: output is the input", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/g.csv"], 3, &["g.csv", "same file as the input"]),
         case("eval: output is the material", vec![("g.csv", t(GEO)), ("m.toml", t("n = 1.5\nsigma_deg = 10\n"))], &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/m.toml"], 3, &["m.toml", "same file as the input"]),
         case("eval: npy output of a text column", vec![("g.csv", t("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,name\n30,0,30,180,x\n"))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/out.npy"], 3, &["g.csv:2", "`name`", "numbers only"]),
+        case("eval: npy directions, a zero vector", vec![("g.npy", polbrdf_io::npy::npy_bytes(&polbrdf_io::csv_io::DIRECTION_COLUMNS, &[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]).unwrap())], &["eval", "--material", "paint", "--input", "{d}/g.npy", "--output", "{d}/out.csv"], 3, &["g.npy:2", "`w_r_x, w_r_y, w_r_z`", "length"]),
         case("eval: npy input without names", vec![("g.npy", b"\x93NUMPY\x01\x00\x46\x00{'descr': '<f8', 'fortran_order': False, 'shape': (0, 4), }          \n".to_vec())], &["eval", "--material", "paint", "--input", "{d}/g.npy", "--output", "{d}/out.csv"], 3, &["g.npy", "named columns"]),
         case("eval: output a directory", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}"], 3, &["is a directory"]),
         case("fit: output is the data", vec![("d.csv", t(MEAS))], &["fit", "--material", "paint", "--data", "{d}/d.csv", "--free", "n", "--output", "{d}/d.csv"], 3, &["d.csv", "same file as the input"]),

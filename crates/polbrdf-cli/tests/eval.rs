@@ -197,3 +197,133 @@ fn bom_crlf_and_horizon_rows_are_accepted() {
     let v: f64 = rows[1][brdf].trim().parse().unwrap();
     assert!(v.is_finite() && v > 0.0);
 }
+
+/// The direction vector of `(θ, φ)` in degrees, as a renderer would give it (unit length;
+/// at θ = 90°, `z = 0` exactly: `cos(π/2)` in f64 is 6·10⁻¹⁷, above the horizon).
+fn vector(theta_deg: f64, phi_deg: f64) -> [f64; 3] {
+    let mut w = polbrdf::geometry::direction(theta_deg.to_radians(), phi_deg.to_radians());
+    if theta_deg == 90.0 {
+        w[2] = 0.0;
+    }
+    w
+}
+
+#[test]
+fn every_test_vector_matches_through_eval_from_direction_vectors() {
+    // The direction columns instead of the angles (out of order, with a pass-through column
+    // and vectors of any length): the same test vectors, through the direction entry point.
+    let dir = tempfile::tempdir().unwrap();
+    let mut checked = 0;
+    for c in &vectors() {
+        let id = c["id"].as_str().unwrap();
+        let inp = &c["inputs"];
+        let deg = |k: &str| inp[k].as_f64().unwrap();
+        let (ti, pi, tr, pr) = (
+            deg("theta_i_deg"),
+            deg("phi_i_deg"),
+            deg("theta_r_deg"),
+            deg("phi_r_deg"),
+        );
+        // A vector along the normal has no azimuth (φ = 0, docs/model.md §9.11): a case whose
+        // frame needs one cannot be written as vectors.
+        let no_azimuth = |t: f64, p: f64| t == 0.0 && p.rem_euclid(360.0) != 0.0;
+        if no_azimuth(ti, pi) || no_azimuth(tr, pr) {
+            continue;
+        }
+        let (wi, wr) = (
+            vector(ti, pi).map(|x| 3.0 * x),
+            vector(tr, pr).map(|x| 0.5 * x),
+        );
+        let mat = write(dir.path(), "m.toml", &material_toml(inp));
+        let geo = write(
+            dir.path(),
+            "g.csv",
+            &format!(
+                "w_r_z,id,w_i_x,w_i_y,w_i_z,w_r_x,w_r_y\n{},{id},{},{},{},{},{}\n",
+                wr[2], wi[0], wi[1], wi[2], wr[0], wr[1]
+            ),
+        );
+        let out = polbrdf(&["eval", "--material", &mat, "--input", &geo]);
+        assert!(out.status.success(), "{id}: {}", stderr(&out));
+        let (header, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
+        let col = |name: &str| -> f64 {
+            let k = header.iter().position(|h| h == name).unwrap();
+            rows[0][k].parse().unwrap()
+        };
+        assert_eq!(rows[0][1], id, "pass-through column copied unchanged");
+        let f00 = c["outputs"]["F"][0][0].as_f64().unwrap();
+        for i in 0..4 {
+            for j in 0..4 {
+                let want = c["outputs"]["F"][i][j].as_f64().unwrap();
+                let got = col(&format!("m{i}{j}"));
+                assert!(
+                    (got - want).abs() <= 1e-9 * f00 + 1e-12,
+                    "{id}: m{i}{j} = {got}, expected {want}"
+                );
+            }
+        }
+        let dolp = c["outputs"]["dolp"].as_f64().unwrap();
+        assert!((col("dolp") - dolp).abs() <= 1e-9, "{id}: dolp");
+        checked += 1;
+    }
+    assert!(checked >= 30, "only {checked} cases as vectors");
+}
+
+#[test]
+fn direction_tables_agree_across_formats_and_with_angles() {
+    // The same geometries as angles (CSV) and as vectors (CSV, .npy): the vectors' results are
+    // the direction entry point's (the same bits in every format, within 1e-12·F00 of the
+    // angles'), and a vector below the horizon is a zero row, not an error.
+    let dir = tempfile::tempdir().unwrap();
+    let geoms = [
+        (30.0, 0.0, 30.0, 180.0),
+        (60.0, 10.0, 45.0, 200.0),
+        (5.0, 300.0, 80.0, 90.0),
+    ];
+    let mut angles = String::from("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n");
+    let mut data = Vec::new();
+    for (ti, pi, tr, pr) in geoms {
+        angles += &format!("{ti},{pi},{tr},{pr}\n");
+        data.extend(vector(ti, pi));
+        data.extend(vector(tr, pr));
+    }
+    // Below the horizon: w_r with z < 0.
+    data.extend([0.5, 0.0, 0.8, 0.3, 0.1, -0.2]);
+    let names = polbrdf_io::csv_io::DIRECTION_COLUMNS;
+    let mut csv = names.join(",") + "\n";
+    for row in data.chunks(6) {
+        csv += &row
+            .iter()
+            .map(|x| format!("{x}"))
+            .collect::<Vec<_>>()
+            .join(",");
+        csv += "\n";
+    }
+    let npy = dir.path().join("g.npy");
+    std::fs::write(&npy, polbrdf_io::npy::npy_bytes(&names, &data).unwrap()).unwrap();
+    let run = |input: &str| {
+        let out = polbrdf(&["eval", "--material", "paint", "--input", input]);
+        assert!(out.status.success(), "{input}: {}", stderr(&out));
+        parse_csv(&String::from_utf8(out.stdout).unwrap())
+    };
+    let (h_a, r_a) = run(&write(dir.path(), "a.csv", &angles));
+    let (h_c, r_c) = run(&write(dir.path(), "d.csv", &csv));
+    let (h_n, r_n) = run(npy.to_str().unwrap());
+    assert_eq!((r_c.len(), r_n.len()), (4, 4));
+    let entries = |h: &[String], r: &[String]| -> Vec<f64> {
+        let k = h.iter().position(|c| c == "m00").unwrap();
+        r[k..k + 16].iter().map(|v| v.parse().unwrap()).collect()
+    };
+    for k in 0..4 {
+        let (c, n) = (entries(&h_c, &r_c[k]), entries(&h_n, &r_n[k]));
+        assert_eq!(c, n, "row {k}: CSV and .npy give the same bits");
+        if k == 3 {
+            assert!(c.iter().all(|v| *v == 0.0), "below the horizon: {c:?}");
+            continue;
+        }
+        let a = entries(&h_a, &r_a[k]);
+        for (x, y) in c.iter().zip(&a) {
+            assert!((x - y).abs() <= 1e-12 * a[0], "row {k}: {x} vs {y}");
+        }
+    }
+}

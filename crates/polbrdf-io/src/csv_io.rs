@@ -8,6 +8,12 @@ use std::path::{Path, PathBuf};
 /// The four angle columns every geometry file must have (degrees, any order).
 pub const ANGLE_COLUMNS: [&str; 4] = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"];
 
+/// The columns `polbrdf eval` reads instead of [`ANGLE_COLUMNS`]: the direction vectors `w_i`
+/// (toward the source) and `w_r` (toward the detector) in the surface frame, z along the
+/// normal, of any length within `polbrdf::geometry::angles::DIRECTION_LENGTH` (docs/model.md
+/// §9.11; the core's `DirectionBatch`).
+pub const DIRECTION_COLUMNS: [&str; 6] = ["w_i_x", "w_i_y", "w_i_z", "w_r_x", "w_r_y", "w_r_z"];
+
 /// The columns `polbrdf eval` appends: `brdf, dolp, aolp_deg, m00 … m33`.
 pub fn result_columns() -> Vec<String> {
     let mut cols = vec!["brdf".to_string(), "dolp".into(), "aolp_deg".into()];
@@ -575,6 +581,63 @@ pub(crate) fn geometry_of_degrees(path: &Path, line: usize, deg: [f64; 4]) -> Re
             message: e.to_string(),
         }
     })
+}
+
+/// The direction vectors `(w_i, w_r)` of a row's six direction fields ([`DIRECTION_COLUMNS`]
+/// order): numbers, each vector as [`directions_of`] checks it.
+pub(crate) fn row_directions(
+    path: &Path,
+    line: usize,
+    fields: [&str; 6],
+) -> Result<([f64; 3], [f64; 3])> {
+    let mut v = [0.0; 6];
+    for (k, x) in v.iter_mut().enumerate() {
+        *x = parse_number(path, line, DIRECTION_COLUMNS[k], fields[k])?;
+    }
+    directions_of(path, line, v)
+}
+
+/// The direction vectors of six numbers at a row's line ([`DIRECTION_COLUMNS`] order): every
+/// component finite (an error naming its column) and each vector of a length the core's
+/// `DirectionBatch` accepts (an error naming the vector's three columns, with the core's
+/// message).
+pub(crate) fn directions_of(path: &Path, line: usize, v: [f64; 6]) -> Result<([f64; 3], [f64; 3])> {
+    if let Some(k) = v.iter().position(|x| !x.is_finite()) {
+        return Err(Error::Field {
+            path: path.to_path_buf(),
+            line,
+            field: DIRECTION_COLUMNS[k].into(),
+            message: format!("{}: a direction component must be finite", show(v[k])),
+        });
+    }
+    let (w_i, w_r) = ([v[0], v[1], v[2]], [v[3], v[4], v[5]]);
+    match polbrdf::DirectionBatch::new(std::slice::from_ref(&w_i), std::slice::from_ref(&w_r)) {
+        Ok(_) => Ok((w_i, w_r)),
+        Err(e) => {
+            // The line names the row: the core's message without its index in the batch of one.
+            let (columns, e) = match e {
+                polbrdf::Error::InvalidDirection { name, value, .. } => (
+                    if name == "w_r" {
+                        &DIRECTION_COLUMNS[3..]
+                    } else {
+                        &DIRECTION_COLUMNS[..3]
+                    },
+                    polbrdf::Error::InvalidDirection {
+                        name,
+                        value,
+                        index: None,
+                    },
+                ),
+                other => (&DIRECTION_COLUMNS[..], other),
+            };
+            Err(Error::Field {
+                path: path.to_path_buf(),
+                line,
+                field: columns.join(", "),
+                message: e.to_string(),
+            })
+        }
+    }
 }
 
 /// A row's `wavelength_um` field: a number, finite and > 0 (µm).

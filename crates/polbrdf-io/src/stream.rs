@@ -4,15 +4,17 @@
 //! number of rows.
 //!
 //! Input: [`GeometryReader`] gives [`GeometryChunk`]s of validated rows, each with its line
-//! (CSV: the physical line; `.npy`, Arrow: the 1-based row) for messages. Output: [`ResultWriter`]
-//! writes the input columns, then `brdf, dolp, aolp_deg, m00 … m33`
+//! (CSV: the physical line; `.npy`, Arrow: the 1-based row) for messages. A row's geometry is
+//! its four angles ([`ANGLE_COLUMNS`]) or, in a table with the direction columns
+//! ([`DIRECTION_COLUMNS`]) instead, its two direction vectors ([`Geometries`]).
+//! Output: [`ResultWriter`] writes the input columns, then `brdf, dolp, aolp_deg, m00 … m33`
 //! ([`crate::csv_io::result_columns`]), into an [`Output`] (atomic for a regular file).
 //! A `.npy` output holds numbers only: a CSV input column that is not a number is an error
 //! naming its line and column.
 
 use crate::csv_io::{
-    fmt_f64_into, parse_number, result_columns, row_geometry, row_wavelength, CsvReader,
-    ANGLE_COLUMNS, WAVELENGTH_COLUMN,
+    directions_of, fmt_f64_into, parse_number, result_columns, row_directions, row_geometry,
+    row_wavelength, CsvReader, ANGLE_COLUMNS, DIRECTION_COLUMNS, WAVELENGTH_COLUMN,
 };
 use crate::error::{Error, Result};
 use crate::npy::{NpyReader, NpyWriter};
@@ -158,13 +160,51 @@ pub enum Passthrough {
     Columns(Vec<Column>),
 }
 
+/// The geometries of a chunk's rows, as the table gives them.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Geometries {
+    /// From the angle columns ([`ANGLE_COLUMNS`], degrees).
+    Angles(Vec<Geometry>),
+    /// From the direction columns ([`DIRECTION_COLUMNS`]): `w_i` (toward the source) and
+    /// `w_r` (toward the detector) per row, each finite and of a length the core's
+    /// `DirectionBatch` accepts; a vector at or below the horizon (`z ≤ 0`) gives a zero pBRDF.
+    Directions {
+        /// Toward the source.
+        w_i: Vec<[f64; 3]>,
+        /// Toward the detector.
+        w_r: Vec<[f64; 3]>,
+    },
+}
+
+impl Geometries {
+    /// The number of rows.
+    pub fn len(&self) -> usize {
+        match self {
+            Geometries::Angles(g) => g.len(),
+            Geometries::Directions { w_i, .. } => w_i.len(),
+        }
+    }
+
+    /// True without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Which columns of a table hold its geometry, and where.
+#[derive(Debug, Clone, Copy)]
+enum GeometryColumns {
+    Angles([usize; 4]),
+    Directions([usize; 6]),
+}
+
 /// A chunk of validated rows.
 #[derive(Debug, Clone)]
 pub struct GeometryChunk {
     /// Each row's line (CSV) or 1-based row (`.npy`, Arrow).
     pub lines: Vec<usize>,
     /// Each row's geometry.
-    pub geometries: Vec<Geometry>,
+    pub geometries: Geometries,
     /// Each row's wavelength (µm) when the input has a `wavelength_um` column.
     pub wavelengths: Option<Vec<f64>>,
     /// Every input column of every row.
@@ -197,7 +237,7 @@ enum Src {
 pub struct GeometryReader {
     path: PathBuf,
     headers: Vec<String>,
-    angles: [usize; 4],
+    columns: GeometryColumns,
     wavelength: Option<usize>,
     src: Src,
     buf: Vec<f64>,
@@ -277,13 +317,33 @@ impl GeometryReader {
         Self::with_src(path, headers, src)
     }
 
-    /// The reader of a source whose header has been read: checks the columns.
+    /// The reader of a source whose header has been read: checks the columns. The geometry is
+    /// the angle columns, or the direction columns when the table has one of those and not
+    /// every angle column; a table with both complete sets is refused (which set would hold?).
     fn with_src(path: &Path, headers: Vec<String>, src: Src) -> Result<Self> {
-        let angles = crate::csv_io::check_header(&headers, path, &ANGLE_COLUMNS)?;
+        let has = |c: &&str| headers.iter().any(|h| h == c);
+        let columns = if DIRECTION_COLUMNS.iter().any(has) && !ANGLE_COLUMNS.iter().all(has) {
+            let idx = crate::csv_io::check_header(&headers, path, &DIRECTION_COLUMNS)?;
+            GeometryColumns::Directions(idx.try_into().expect("six columns"))
+        } else {
+            let idx = crate::csv_io::check_header(&headers, path, &ANGLE_COLUMNS)?;
+            if DIRECTION_COLUMNS.iter().all(has) {
+                return Err(Error::File {
+                    path: path.to_path_buf(),
+                    message: format!(
+                        "both the angle columns ({}) and the direction columns ({}): give one \
+                         geometry per row, as angles or as direction vectors",
+                        ANGLE_COLUMNS.join(", "),
+                        DIRECTION_COLUMNS.join(", ")
+                    ),
+                });
+            }
+            GeometryColumns::Angles(idx.try_into().expect("four columns"))
+        };
         let wavelength = headers.iter().position(|h| h == WAVELENGTH_COLUMN);
         Ok(Self {
             path: path.to_path_buf(),
-            angles: angles.try_into().expect("four columns"),
+            columns,
             headers,
             wavelength,
             src,
@@ -344,7 +404,7 @@ impl GeometryReader {
             return Ok(None);
         }
         let path = self.path.clone();
-        let [a, b, c, d] = self.angles;
+        let columns = self.columns;
         let chunk = match &mut self.src {
             Src::Csv(rdr) => {
                 let cap = max.min(CHUNK_ROWS);
@@ -359,15 +419,30 @@ impl GeometryReader {
                 }
                 // Parsed in parallel; the first bad row (in file order) is the error.
                 use rayon::prelude::*;
-                let parsed: Vec<Result<Geometry>> = lines
-                    .par_iter()
-                    .enumerate()
-                    .map(|(k, &line)| {
-                        let f = |i| records.field(k, i);
-                        row_geometry(&path, line, [f(a), f(b), f(c), f(d)])
-                    })
-                    .collect();
-                let geometries = parsed.into_iter().collect::<Result<Vec<Geometry>>>()?;
+                let geometries = match columns {
+                    GeometryColumns::Angles(idx) => {
+                        let parsed: Vec<Result<Geometry>> = lines
+                            .par_iter()
+                            .enumerate()
+                            .map(|(k, &line)| {
+                                row_geometry(&path, line, idx.map(|i| records.field(k, i)))
+                            })
+                            .collect();
+                        Geometries::Angles(parsed.into_iter().collect::<Result<_>>()?)
+                    }
+                    GeometryColumns::Directions(idx) => {
+                        let parsed: Vec<Result<([f64; 3], [f64; 3])>> = lines
+                            .par_iter()
+                            .enumerate()
+                            .map(|(k, &line)| {
+                                row_directions(&path, line, idx.map(|i| records.field(k, i)))
+                            })
+                            .collect();
+                        let pairs = parsed.into_iter().collect::<Result<Vec<_>>>()?;
+                        let (w_i, w_r) = pairs.into_iter().unzip();
+                        Geometries::Directions { w_i, w_r }
+                    }
+                };
                 let wavelengths = match self.wavelength {
                     Some(w) => Some(
                         lines
@@ -398,21 +473,17 @@ impl GeometryReader {
                     n += k;
                 }
                 let lines: Vec<usize> = (first..first + n).collect();
-                let mut geometries = Vec::with_capacity(n);
+                let mut rows = RowGeometries::new(columns, n);
                 let mut wavelengths = self.wavelength.map(|_| Vec::with_capacity(n));
                 for (row, &line) in self.buf.chunks_exact(cols).zip(&lines) {
-                    geometries.push(numeric_geometry(
-                        &path,
-                        line,
-                        [row[a], row[b], row[c], row[d]],
-                    )?);
+                    rows.push(&path, line, |i| row[i])?;
                     if let (Some(w), Some(out)) = (self.wavelength, wavelengths.as_mut()) {
                         out.push(checked_wavelength(&path, line, row[w])?);
                     }
                 }
                 GeometryChunk {
                     lines,
-                    geometries,
+                    geometries: rows.finish(),
                     wavelengths,
                     columns: Passthrough::Numbers(std::mem::take(&mut self.buf)),
                 }
@@ -445,11 +516,20 @@ impl GeometryReader {
                         }),
                     }
                 };
-                let (ta, pa, tr, pr) = (number(a)?, number(b)?, number(c)?, number(d)?);
-                let mut geometries = Vec::with_capacity(n);
+                let geometry_columns = match columns {
+                    GeometryColumns::Angles(idx) => idx.to_vec(),
+                    GeometryColumns::Directions(idx) => idx.to_vec(),
+                };
+                let values = geometry_columns
+                    .iter()
+                    .map(|&i| number(i).map(|v| (i, v)))
+                    .collect::<Result<Vec<_>>>()?;
+                let column = |i: usize| values.iter().find(|(j, _)| *j == i).expect("read").1;
+                let mut rows = RowGeometries::new(columns, n);
                 for (k, &line) in lines.iter().enumerate() {
-                    geometries.push(numeric_geometry(&path, line, [ta[k], pa[k], tr[k], pr[k]])?);
+                    rows.push(&path, line, |i| column(i)[k])?;
                 }
+                let geometries = rows.finish();
                 let wavelengths = match self.wavelength {
                     Some(w) => Some(
                         number(w)?
@@ -473,6 +553,46 @@ impl GeometryReader {
             return Ok(None);
         }
         Ok(Some(chunk))
+    }
+}
+
+/// The geometries of a chunk being read row by row (`.npy` and Arrow input), with the
+/// columns they come from.
+enum RowGeometries {
+    Angles([usize; 4], Vec<Geometry>),
+    Directions([usize; 6], Vec<[f64; 3]>, Vec<[f64; 3]>),
+}
+
+impl RowGeometries {
+    /// Room for `n` rows of the kind `columns` reads.
+    fn new(columns: GeometryColumns, n: usize) -> Self {
+        match columns {
+            GeometryColumns::Angles(idx) => RowGeometries::Angles(idx, Vec::with_capacity(n)),
+            GeometryColumns::Directions(idx) => {
+                RowGeometries::Directions(idx, Vec::with_capacity(n), Vec::with_capacity(n))
+            }
+        }
+    }
+
+    /// Appends the row at `line` whose value in column `i` is `value(i)`, with the same checks
+    /// and messages as a CSV row's.
+    fn push(&mut self, path: &Path, line: usize, value: impl Fn(usize) -> f64) -> Result<()> {
+        match self {
+            RowGeometries::Angles(idx, g) => g.push(numeric_geometry(path, line, idx.map(value))?),
+            RowGeometries::Directions(idx, w_i, w_r) => {
+                let (i, r) = directions_of(path, line, idx.map(value))?;
+                w_i.push(i);
+                w_r.push(r);
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Geometries {
+        match self {
+            RowGeometries::Angles(_, g) => Geometries::Angles(g),
+            RowGeometries::Directions(_, w_i, w_r) => Geometries::Directions { w_i, w_r },
+        }
     }
 }
 

@@ -280,6 +280,43 @@ fn at_or_below_the_horizon_the_pbrdf_is_zero() {
 }
 
 #[test]
+fn a_hair_above_the_horizon_the_kernel_is_finite_and_agrees_with_the_angles() {
+    // z/|w| far below what an f64 angle below 90° can express (down to the subnormal range,
+    // the case a fuzzer found: `1/cosθ` overflowed to ∞): the kernel takes cos θ of the largest
+    // angle below 90°, as the one-geometry path does, in both precisions.
+    for mat in [
+        polbrdf::preset("paint").unwrap().build().unwrap(),
+        MaterialSpec::new(1.5, 10.0).build().unwrap(),
+    ] {
+        let e = Engine::new(&mat);
+        for z in [1e-17, 1e-20, 1e-200, 2.1e-313] {
+            let low = [-0.5, 6e-154, z];
+            for (w_i, w_r) in [
+                ([low], [direction(0.5, 3.0)]),
+                ([direction(0.9, 0.2)], [low]),
+                ([low], [[0.5, 1e-3, z]]),
+            ] {
+                let d = DirectionBatch::new(&w_i, &w_r).unwrap();
+                let want = mat.evaluate(&d.get(0)).pbrdf.to_row_major();
+                let got = e.mueller(&d).unwrap()[0];
+                assert!(got.iter().all(|v| v.is_finite()), "z = {z:e}: {got:?}");
+                assert!(
+                    deviation(&got, &want) <= 1e-12,
+                    "z = {z:e}: {got:?} vs {want:?}"
+                );
+                let mut f32s = [[0f32; 16]];
+                e.mueller_f32_into(&d, &mut f32s).unwrap();
+                assert!(
+                    deviation(&f32s[0], &want) <= 1e-5,
+                    "z = {z:e} (f32): {:?}",
+                    f32s[0]
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn bad_vectors_are_refused_with_their_name_and_index() {
     let ok = [0.0, 0.2, 1.0];
     let bad = [

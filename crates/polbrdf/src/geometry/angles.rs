@@ -97,6 +97,12 @@ impl<T: Real> Trig<T> {
 /// and product of their components stays in the normal range of f64 and of f32.
 pub const DIRECTION_LENGTH: (f64, f64) = (1e-15, 1e15);
 
+/// `cos θ` of the largest f64 angle below π/2 (2.83·10⁻¹⁶): the smallest cosine a direction
+/// above the horizon has as an angle, and the floor [`Trig::from_directions`] puts under
+/// `cos θ = z/|w|` for `z > 0` (docs/model.md §9.11) — without it a vector a few hundred
+/// orders of magnitude above the horizon (`z = 1e-313`) overflowed `1/cos θ`.
+pub const COS_BELOW_90: f64 = 2.832_769_448_823_99e-16;
+
 impl<T: Real> Trig<T> {
     /// From two direction vectors `(x, y, z)` in the surface frame (z along the normal; any
     /// length within [`DIRECTION_LENGTH`], each normalized here): `w_i` toward the source,
@@ -125,6 +131,12 @@ impl<T: Real> Trig<T> {
         let polar = |w: [T; 3]| {
             let inv = T::ONE / (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
             let (x, y, z) = (w[0] * inv, w[1] * inv, w[2] * inv);
+            // Above the horizon, no closer to it than an f64 angle can be ([`COS_BELOW_90`]).
+            let z = if z > T::ZERO {
+                z.max(T::of(COS_BELOW_90))
+            } else {
+                z
+            };
             let r2 = x * x + y * y;
             let r = r2.sqrt();
             let inv_r = T::ONE / if r > T::ZERO { r } else { T::ONE };
