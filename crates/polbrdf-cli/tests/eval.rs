@@ -45,34 +45,41 @@ fn every_test_vector_matches_through_eval() {
                 inp["phi_r_deg"], inp["theta_i_deg"], inp["theta_r_deg"], inp["phi_i_deg"]
             ),
         );
-        let out = polbrdf(&["eval", "--material", &mat, "--input", &geo]);
-        assert!(out.status.success(), "{id}: {}", stderr(&out));
-        let (header, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
-        assert_eq!(rows.len(), 1);
-        let col = |name: &str| -> f64 {
-            let k = header.iter().position(|h| h == name).unwrap();
-            rows[0][k].parse().unwrap()
-        };
-        assert_eq!(rows[0][0], id, "pass-through column copied unchanged");
-        let f_ref = c["outputs"]["f"].as_f64().unwrap();
-        let f00 = c["outputs"]["F"][0][0].as_f64().unwrap();
-        assert!(
-            (col("brdf") - f_ref).abs() <= 1e-9 * f_ref + 1e-12,
-            "{id}: brdf"
-        );
-        for i in 0..4 {
-            for j in 0..4 {
-                let want = c["outputs"]["F"][i][j].as_f64().unwrap();
-                let got = col(&format!("m{i}{j}"));
-                assert!(
-                    (got - want).abs() <= 1e-9 * f00 + 1e-12,
-                    "{id}: m{i}{j} = {got}, expected {want}"
-                );
-            }
-        }
-        let dolp = c["outputs"]["dolp"].as_f64().unwrap();
-        assert!((col("dolp") - dolp).abs() <= 1e-9, "{id}: dolp");
+        eval_matches_vector(c, &mat, &geo, 0);
     }
+}
+
+/// `eval` of the material file `mat` on the one-row table `geo` (whose column `id_col` holds
+/// the case's id) agrees with test-vector case `c`: BRDF, the 16 entries and the DoLP.
+fn eval_matches_vector(c: &Value, mat: &str, geo: &str, id_col: usize) {
+    let id = c["id"].as_str().unwrap();
+    let out = polbrdf(&["eval", "--material", mat, "--input", geo]);
+    assert!(out.status.success(), "{id}: {}", stderr(&out));
+    let (header, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
+    assert_eq!(rows.len(), 1);
+    let col = |name: &str| -> f64 {
+        let k = header.iter().position(|h| h == name).unwrap();
+        rows[0][k].parse().unwrap()
+    };
+    assert_eq!(rows[0][id_col], id, "pass-through column copied unchanged");
+    let f_ref = c["outputs"]["f"].as_f64().unwrap();
+    let f00 = c["outputs"]["F"][0][0].as_f64().unwrap();
+    assert!(
+        (col("brdf") - f_ref).abs() <= 1e-9 * f_ref + 1e-12,
+        "{id}: brdf"
+    );
+    for i in 0..4 {
+        for j in 0..4 {
+            let want = c["outputs"]["F"][i][j].as_f64().unwrap();
+            let got = col(&format!("m{i}{j}"));
+            assert!(
+                (got - want).abs() <= 1e-9 * f00 + 1e-12,
+                "{id}: m{i}{j} = {got}, expected {want}"
+            );
+        }
+    }
+    let dolp = c["outputs"]["dolp"].as_f64().unwrap();
+    assert!((col("dolp") - dolp).abs() <= 1e-9, "{id}: dolp");
 }
 
 #[test]
@@ -243,27 +250,7 @@ fn every_test_vector_matches_through_eval_from_direction_vectors() {
                 wr[2], wi[0], wi[1], wi[2], wr[0], wr[1]
             ),
         );
-        let out = polbrdf(&["eval", "--material", &mat, "--input", &geo]);
-        assert!(out.status.success(), "{id}: {}", stderr(&out));
-        let (header, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
-        let col = |name: &str| -> f64 {
-            let k = header.iter().position(|h| h == name).unwrap();
-            rows[0][k].parse().unwrap()
-        };
-        assert_eq!(rows[0][1], id, "pass-through column copied unchanged");
-        let f00 = c["outputs"]["F"][0][0].as_f64().unwrap();
-        for i in 0..4 {
-            for j in 0..4 {
-                let want = c["outputs"]["F"][i][j].as_f64().unwrap();
-                let got = col(&format!("m{i}{j}"));
-                assert!(
-                    (got - want).abs() <= 1e-9 * f00 + 1e-12,
-                    "{id}: m{i}{j} = {got}, expected {want}"
-                );
-            }
-        }
-        let dolp = c["outputs"]["dolp"].as_f64().unwrap();
-        assert!((col("dolp") - dolp).abs() <= 1e-9, "{id}: dolp");
+        eval_matches_vector(c, &mat, &geo, 1);
         checked += 1;
     }
     assert!(checked >= 30, "only {checked} cases as vectors");
