@@ -10,6 +10,8 @@
 //!   (`scripts/bench-peers`: n = 1.2, k = 7, σ = atan 0.2, shadowing off, whose narrow lobe
 //!   sends about a fifth of the f32 elements through D's f64 refinement). On an AVX-512 CPU
 //!   the `avx2+fma` rows show what an AVX2-only CPU of the same core would do;
+//! - `kernel_prepare`, `kernel_mueller_prepared`: the f64 kernel in two parts, the geometry
+//!   stages (every angle) and the rest from a prepared batch;
 //! - `single_*`: the latency of one evaluation.
 
 use divan::counter::ItemsCount;
@@ -220,6 +222,36 @@ fn kernel_mueller_directions(bencher: Bencher<'_, '_>, args: (&str, &str)) {
 fn kernel_mueller_directions_f32(bencher: Bencher<'_, '_>, args: (&str, &str)) {
     full_mueller(bencher, args, vectors, 0.0f32, |k, b, o| {
         k.mueller_f32_into(b, 0, o);
+    });
+}
+
+/// The geometry stages alone (`Kernel::prepare`: the four sine/cosine pairs, θN, β, ΦN, the
+/// cosines and the Priest–Meier pairs — every angle, as a prepared batch keeps them), one
+/// thread: with [`kernel_mueller_prepared`], the f64 kernel split in two (docs/model.md §12,
+/// "What an element costs").
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_prepare(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let batch = angles(d);
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    bencher
+        .counter(ItemsCount::new(N))
+        .bench_local(|| black_box(k.prepare(black_box(&batch))));
+}
+
+/// The full pBRDF from a prepared batch (the material stages, the Fresnel matrix, the
+/// rotations, the transpose and the stores), one thread.
+#[divan::bench(args = LEVEL_MATERIALS)]
+fn kernel_mueller_prepared(bencher: Bencher<'_, '_>, (name, material): (&str, &str)) {
+    let Some(level) = level(name) else { return };
+    let d = data();
+    let k = Kernel::with_level(d.material(material), level).unwrap();
+    let prepared = k.prepare(&angles(d));
+    let mut out = vec![[0.0; 16]; N];
+    bencher.counter(ItemsCount::new(N)).bench_local(|| {
+        k.mueller_prepared_into(black_box(&prepared), 0, &mut out);
+        black_box(&mut out);
     });
 }
 
