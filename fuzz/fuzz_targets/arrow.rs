@@ -37,8 +37,17 @@ fn drain(r: polbrdf_io::Result<ArrowReader>, name: &str) {
 
 fuzz_target!(|data: &[u8]| {
     let file = Path::new("fuzz.arrow");
-    drain(ArrowReader::file(Cursor::new(data.to_vec()), file), "fuzz.arrow:");
-    drain(ArrowReader::file_sequential(Cursor::new(data.to_vec()), file), "fuzz.arrow:");
+    drain(
+        ArrowReader::file(Cursor::new(data.to_vec()), file),
+        "fuzz.arrow:",
+    );
+    drain(
+        ArrowReader::file_sequential(Cursor::new(data.to_vec()), file),
+        "fuzz.arrow:",
+    );
     let stream = Path::new("fuzz.arrows");
-    drain(ArrowReader::stream(Cursor::new(data.to_vec()), stream), "fuzz.arrows:");
+    drain(
+        ArrowReader::stream(Cursor::new(data.to_vec()), stream),
+        "fuzz.arrows:",
+    );
 });

@@ -17,7 +17,9 @@ fuzz_target!(|data: &[u8]| {
             // Bounded node counts only (a huge width over a tiny step is legitimate input).
             if (hi - lo) / b.default_step() <= 64.0 && wl.len() <= 4096 {
                 let nodes = b.nodes(b.default_step(), &[]);
-                assert!(nodes.iter().all(|(l, w)| l.is_finite() && w.is_finite() && *w >= 0.0));
+                assert!(nodes
+                    .iter()
+                    .all(|(l, w)| l.is_finite() && w.is_finite() && *w >= 0.0));
                 assert!(nodes.iter().all(|(l, _)| *l >= lo && *l <= hi));
             }
         }

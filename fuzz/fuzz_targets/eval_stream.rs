@@ -1,6 +1,6 @@
-//! `eval`'s streaming geometry reader: any bytes, as CSV and as `.npy`, read in chunks of 7
-//! rows, give validated rows (angles or direction vectors) whose pBRDF through the engine is
-//! finite with F00 ≥ 0, or an error naming the file.
+//! `eval`'s streaming geometry reader: any bytes, as CSV, as `.npy` and as an Arrow IPC stream,
+//! read in chunks of 7 rows, give validated rows (angles or direction vectors) whose pBRDF
+//! through the engine is finite with F00 ≥ 0, or an error naming the file.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use polbrdf::{DirectionBatch, Engine};
@@ -48,4 +48,5 @@ fn read_all(data: &[u8], name: &str, format: Format) {
 fuzz_target!(|data: &[u8]| {
     read_all(data, "fuzz.csv", Format::Csv);
     read_all(data, "fuzz.npy", Format::Npy);
+    read_all(data, "fuzz.arrows", Format::ArrowStream);
 });

@@ -15,8 +15,9 @@ fuzz_target!(|data: &[u8]| {
             let f = m.pbrdf(&g);
             assert!(f.0.iter().flatten().all(|v| v.is_finite()), "{spec:?}");
             // What we write back reads back to the same material.
-            let again = polbrdf_io::parse_material(&polbrdf_io::material_to_toml(&spec), Path::new("x"))
-                .expect("round trip");
+            let again =
+                polbrdf_io::parse_material(&polbrdf_io::material_to_toml(&spec), Path::new("x"))
+                    .expect("round trip");
             assert_eq!(again, spec);
         }
         Err(e) => assert!(e.to_string().starts_with("fuzz.toml")),

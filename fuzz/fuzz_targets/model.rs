@@ -36,7 +36,8 @@ fn range(x: f64, lo: f64, hi: f64, log: bool) -> f64 {
 }
 
 fuzz_target!(|x: Input| {
-    let v = |raw: f64, lo: f64, hi: f64, log: bool| if x.raw { raw } else { range(raw, lo, hi, log) };
+    let v =
+        |raw: f64, lo: f64, hi: f64, log: bool| if x.raw { raw } else { range(raw, lo, hi, log) };
     let spec = MaterialSpec {
         name: None,
         n: v(x.n, 0.01, 1e3, true),
@@ -48,11 +49,15 @@ fuzz_target!(|x: Input| {
         shadowing: x.shadowing,
         tau_deg: v(x.tau_deg, 0.1, 180.0, true),
         omega_deg: v(x.omega_deg, 0.1, 180.0, true),
-        azimuth_term: if x.eq3 { AzimuthTerm::Eq3 } else { AzimuthTerm::None },
+        azimuth_term: if x.eq3 {
+            AzimuthTerm::Eq3
+        } else {
+            AzimuthTerm::None
+        },
         rho_d: v(x.rho_d, 0.0, 1.0, false),
         rho_v: v(x.rho_v, 0.0, 1.0, false),
         spectral: None,
-};
+    };
     let Ok(m) = spec.build() else { return };
     let [ti, pi, tr, pr] = x.angles_deg;
     let g = if x.raw {
@@ -68,7 +73,10 @@ fuzz_target!(|x: Input| {
     let Ok(g) = g else { return };
     let e = m.evaluate(&g);
     let f = e.pbrdf;
-    assert!(f.0.iter().flatten().all(|v| v.is_finite()), "{spec:?} {g:?}: {f:?}");
+    assert!(
+        f.0.iter().flatten().all(|v| v.is_finite()),
+        "{spec:?} {g:?}: {f:?}"
+    );
     assert!(f.0[0][0] >= 0.0, "{spec:?} {g:?}");
     let d = e.dolp();
     assert!((0.0..=1.0 + 1e-12).contains(&d), "{spec:?} {g:?}: dolp {d}");
