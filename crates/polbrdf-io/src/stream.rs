@@ -198,6 +198,16 @@ enum GeometryColumns {
     Directions([usize; 6]),
 }
 
+impl GeometryColumns {
+    /// The positions of the geometry columns.
+    fn indices(&self) -> &[usize] {
+        match self {
+            GeometryColumns::Angles(idx) => idx,
+            GeometryColumns::Directions(idx) => idx,
+        }
+    }
+}
+
 /// A chunk of validated rows.
 #[derive(Debug, Clone)]
 pub struct GeometryChunk {
@@ -516,18 +526,14 @@ impl GeometryReader {
                         }),
                     }
                 };
-                let geometry_columns = match columns {
-                    GeometryColumns::Angles(idx) => idx.to_vec(),
-                    GeometryColumns::Directions(idx) => idx.to_vec(),
-                };
-                let values = geometry_columns
-                    .iter()
-                    .map(|&i| number(i).map(|v| (i, v)))
-                    .collect::<Result<Vec<_>>>()?;
-                let column = |i: usize| values.iter().find(|(j, _)| *j == i).expect("read").1;
+                // The geometry columns' numbers, by column index (the others left empty).
+                let mut numbers: Vec<&[f64]> = vec![&[]; cols.len()];
+                for &i in columns.indices() {
+                    numbers[i] = number(i)?;
+                }
                 let mut rows = RowGeometries::new(columns, n);
                 for (k, &line) in lines.iter().enumerate() {
-                    rows.push(&path, line, |i| column(i)[k])?;
+                    rows.push(&path, line, |i| numbers[i][k])?;
                 }
                 let geometries = rows.finish();
                 let wavelengths = match self.wavelength {

@@ -284,6 +284,8 @@ fn a_hair_above_the_horizon_the_kernel_is_finite_and_agrees_with_the_angles() {
     // z/|w| far below what an f64 angle below 90° can express (down to the subnormal range,
     // the case a fuzzer found: `1/cosθ` overflowed to ∞): the kernel takes cos θ of the largest
     // angle below 90°, as the one-geometry path does, in both precisions.
+    let below_90 = std::f64::consts::FRAC_PI_2.next_down();
+    assert_eq!(polbrdf::geometry::angles::COS_BELOW_90, below_90.cos());
     for mat in [
         polbrdf::preset("paint").unwrap().build().unwrap(),
         MaterialSpec::new(1.5, 10.0).build().unwrap(),
