@@ -1,0 +1,1 @@
+//! Tests of the task layer: one module per job (added with the jobs).
