@@ -343,9 +343,6 @@ const SKY_MODELS: &[SkyModelKeys] = &[
     },
 ];
 
-/// The default `dop_max` of the `cie-clear` sky.
-const DEFAULT_DOP_MAX: f64 = 0.75;
-
 /// A TOML table with the position of every key and value.
 type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
 
@@ -775,7 +772,9 @@ fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
     }
     let zenith_deg = doc.required_in_table("sun.zenith_deg")?;
     let irradiance = doc.required_in_table("sun.irradiance")?;
-    let azimuth_deg = doc.number("sun.azimuth_deg").unwrap_or(0.0);
+    let azimuth_deg = doc
+        .number("sun.azimuth_deg")
+        .unwrap_or(Sun::DEFAULT_AZIMUTH.to_degrees());
     // −0 is 0; a zenith angle just below 90° can round to π/2 in radians.
     let zenith = zenith_deg.to_radians() + 0.0;
     if !(zenith_deg.is_finite() && (0.0..90.0).contains(&zenith_deg) && zenith < FRAC_PI_2) {
@@ -928,7 +927,9 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
             }
             SkyModel::ClearSky {
                 irradiance,
-                dop_max: doc.number("sky.dop_max").unwrap_or(DEFAULT_DOP_MAX),
+                dop_max: doc
+                    .number("sky.dop_max")
+                    .unwrap_or(SkyModel::DEFAULT_DOP_MAX),
             }
         }
         SkyKind::Table => SkyModel::Table(

@@ -63,6 +63,11 @@ pub enum SkyModel {
 }
 
 impl SkyModel {
+    /// The default maximum degree of polarization δ_max of the clear sky
+    /// ([`SkyModel::ClearSky`]): the one definition, which the scene file reader and the Python
+    /// module use when `dop_max` is not given.
+    pub const DEFAULT_DOP_MAX: f64 = 0.75;
+
     /// The uniform radiance at `lambda_um`, `None` for a sky that is not uniform.
     fn uniform_at(&self, lambda_um: f64) -> Option<f64> {
         match self {
@@ -114,6 +119,9 @@ pub struct Sun {
 }
 
 impl Sun {
+    /// The default azimuth of the sun (rad) when a scene gives only its zenith angle.
+    pub const DEFAULT_AZIMUTH: f64 = 0.0;
+
     /// An unpolarized sun.
     pub fn unpolarized(zenith: f64, azimuth: f64, irradiance: f64) -> Self {
         Self {
