@@ -1,55 +1,33 @@
 //! `polbrdf check`: is a parameter set physically valid everywhere?
 
 use crate::error::CliError;
-use crate::spectrum::{describe, materials_at, SpectralArgs};
-use polbrdf::{physical_validity, CheckGrid, ValidityReport};
+use crate::spectrum::SpectralArgs;
+use polbrdf_tasks::check::{check, CheckRequest};
+use polbrdf_tasks::spectrum::describe;
 
 /// Runs `polbrdf check`; exit code 6 when a check fails. Over a band, every check runs at each
 /// of the band's spectral nodes and the worst one is reported.
 pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(), CliError> {
-    let spec = polbrdf_io::load_material(material)?;
-    let spectrum = spectral.spectrum()?;
-    let nodes = materials_at(&[(&spec, "--material", material)], &spectrum)?;
-    if !(grid_deg.is_finite() && grid_deg > 0.0 && grid_deg <= 30.0) {
-        return Err(CliError::Invalid(format!(
-            "--grid-deg = {grid_deg}: must lie in (0, 30]"
-        )));
-    }
+    let request = CheckRequest {
+        material: material.to_string(),
+        grid_deg,
+        spectral: spectral.request(),
+    };
     // The grid's size (physical_validity's loops), bounded before it is allocated.
-    let zeniths = (90.0 / grid_deg).ceil() as usize;
-    let azimuths = (180.0 / grid_deg).ceil() as usize;
     let max = crate::limits::CHECK_GEOMETRIES;
-    if zeniths
-        .checked_mul(zeniths)
-        .and_then(|n| n.checked_mul(azimuths))
-        .is_none_or(|n| n > max)
-    {
+    if grid_deg.is_finite() && grid_deg > 0.0 && request.geometries().is_none_or(|n| n > max) {
         return Err(CliError::Usage(format!(
             "--grid-deg = {grid_deg:e}: the grid would have more than {max} geometries (the \
              limit of this option, about 1 GB; see the README's Reliability section): give a \
              step of at least 0.9°"
         )));
     }
-    let grid = CheckGrid {
-        zenith_step: grid_deg.to_radians(),
-        azimuth_step: (2.0 * grid_deg).to_radians(),
-    };
-    // Per node: (wavelength, report).
-    let reports: Vec<(Option<f64>, ValidityReport)> = nodes
-        .iter()
-        .map(|(_, ms)| (ms[0].wavelength_um(), physical_validity(&ms[0], &grid)))
-        .collect();
+    let outcome = check(&request)?;
+    let reports = &outcome.reports;
+    let (l_real, r_real) = outcome.worst_realizability();
+    let (l_energy, r_energy) = outcome.worst_energy();
+    let (l_recip, r_recip) = outcome.worst_reciprocity();
     let at = |l: Option<f64>| l.map(|l| format!(" at λ = {l:.4} µm")).unwrap_or_default();
-    let worst = |key: &dyn Fn(&ValidityReport) -> f64| {
-        reports
-            .iter()
-            .max_by(|a, b| key(&a.1).total_cmp(&key(&b.1)))
-            .expect("at least one node")
-    };
-    let (l_real, r_real) = worst(&|r| -r.min_coherency.0);
-    let (l_energy, r_energy) = worst(&|r| r.max_albedo().total());
-    let (l_recip, r_recip) = worst(&|r| r.reciprocity.0.max(r.reciprocity.1));
-    let m = &nodes[0].1[0];
     let r = r_real;
     let mark = |ok: bool| if ok { "ok  " } else { "FAIL" };
     let deg = |g: &polbrdf::Geometry| {
@@ -62,8 +40,8 @@ pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(),
     };
     println!(
         "polbrdf check: {}{} over {} geometries (zenith step {grid_deg}°, azimuth step {}°){}\n",
-        m.name().unwrap_or(material),
-        describe(&spectrum),
+        outcome.name,
+        describe(outcome.spectrum.as_ref()),
         r.geometries,
         2.0 * grid_deg,
         if reports.len() > 1 {
@@ -120,7 +98,7 @@ pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(),
             r.reciprocity.0.max(r.reciprocity.1)
         );
     }
-    if reports.iter().all(|(_, r)| r.passes()) {
+    if outcome.passes() {
         Ok(())
     } else {
         Err(CliError::CheckFailed)

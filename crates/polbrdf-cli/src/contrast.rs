@@ -3,24 +3,22 @@
 //! the best viewing directions in `best.json`.
 
 use crate::error::CliError;
-use crate::map::{
-    angle_scale, csv, deg, dolp_scale, light_marks, polar_grid, render_all, short, single,
-    write_all, Output, ViewArgs, PANEL,
+use crate::figures::{
+    angle_scale, dolp_scale, input_stokes, light_marks, polar_grid, render_all, short, single,
+    PANEL,
 };
-use crate::spectrum::{describe, load_spec, materials_at};
-use polbrdf::analysis::contrast::{
-    polarization_null, Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
-};
-use polbrdf::analysis::scene::Observer;
-use polbrdf::Stokes;
+use crate::output::{csv, write_all, OutputFile};
+use crate::view::ViewArgs;
+use polbrdf::analysis::contrast::{ContrastSample, Ranking};
 use polbrdf_plot::{
     nice_ceil, ColorScale, Colormap, MarkShape, PolarFigure, PolarMark, PolarPanel,
 };
-use serde_json::{json, Value};
+use polbrdf_tasks::contrast::{
+    contrast, ContrastRequest, ContrastStudy, RankRequest, Setting, SourceRequest,
+};
+use polbrdf_tasks::hemisphere::deg;
+use polbrdf_tasks::spectrum::describe;
 use std::path::PathBuf;
-
-/// The polarization-null directions `(θ_r, φ_r)` in degrees of the target and of the background.
-type NullLoci = (Vec<(f64, f64)>, Vec<(f64, f64)>);
 
 /// `polbrdf contrast`.
 #[derive(clap::Args, Debug)]
@@ -76,216 +74,71 @@ pub struct Args {
 }
 
 impl Args {
-    fn rank_options(&self) -> Result<RankOptions, CliError> {
+    /// The request: options parsed (and limited), the rest validated by the task.
+    fn request(&self) -> Result<ContrastRequest, CliError> {
         let by: Ranking = self.rank_by.parse().map_err(CliError::Invalid)?;
-        if self.top == 0 {
-            return Err(CliError::Invalid("--top must be at least 1".into()));
-        }
         crate::limits::at_most("--top", self.top, crate::limits::TOP)?;
-        if !(self.min_separation_deg.is_finite()
-            && (0.0..=180.0).contains(&self.min_separation_deg))
-        {
-            return Err(CliError::Invalid(format!(
-                "--min-separation-deg = {}: must lie in [0, 180]",
-                self.min_separation_deg
-            )));
-        }
-        if !(self.max_zenith_deg > 0.0 && self.max_zenith_deg < 90.0) {
-            return Err(CliError::Invalid(format!(
-                "--max-zenith-deg = {}: must lie in (0, 90)",
-                self.max_zenith_deg
-            )));
-        }
-        Ok(RankOptions {
-            by,
-            count: self.top,
-            min_separation: self.min_separation_deg.to_radians(),
-            max_zenith: self.max_zenith_deg.to_radians(),
-            refine: !self.no_refine,
+        let source = match &self.scene {
+            Some(path) => SourceRequest::Scene(path.clone()),
+            None => SourceRequest::Collimated {
+                light: self.view.light()?,
+                spectral: self.view.spectral.request(),
+            },
+        };
+        Ok(ContrastRequest {
+            target: self.target.clone(),
+            background: self.background.clone(),
+            source,
+            grid_deg: self.view.grid_deg()?,
+            rank: RankRequest {
+                by,
+                top: self.top,
+                min_separation_deg: self.min_separation_deg,
+                max_zenith_deg: self.max_zenith_deg,
+                refine: !self.no_refine,
+            },
         })
     }
 }
 
-/// A material from the command line (`--target`) or else from the scene file's table.
-fn material_of(
-    arg: &Option<String>,
-    option: &str,
-    from_scene: Option<&polbrdf_io::SceneObject>,
-) -> Result<(polbrdf::MaterialSpec, String, String), CliError> {
-    if let Some(a) = arg {
-        let (spec, name) = load_spec(a, option)?;
-        return Ok((spec, name, a.clone()));
+/// Runs `polbrdf contrast`: everything is validated before anything is computed or written.
+pub fn run(args: &Args) -> Result<(), CliError> {
+    let request = args.request()?;
+    let started = std::time::Instant::now();
+    let study = contrast(&request)?;
+    let elapsed = started.elapsed();
+    for w in &study.warnings {
+        crate::note!("polbrdf contrast: note: {w}");
     }
-    match from_scene.and_then(|o| o.material.clone()) {
-        Some((spec, name)) => Ok((spec, name.clone(), name)),
-        None => Err(CliError::Usage(format!(
-            "{option} is required{}",
-            if from_scene.is_some() {
-                format!(
-                    " (or a `material` in the scene's [{}] table)",
-                    option.trim_start_matches("--")
-                )
-            } else {
-                String::new()
-            }
-        ))),
-    }
+    let mut best = serde_json::to_string_pretty(&study.best_json()).expect("JSON of numbers");
+    best.push('\n');
+    let mut files = vec![
+        (
+            "contrast.csv".to_string(),
+            csv(&study.columns(), study.rows()),
+        ),
+        ("best.json".to_string(), best.into_bytes()),
+    ];
+    figures(&mut files, &study)?;
+    let paths = write_all(&args.out, &files)?;
+    summary(&study, elapsed);
+    println!("Wrote {} files to {}", paths.len(), args.out.display());
+    Ok(())
 }
 
-/// Runs `polbrdf contrast`.
-pub fn run(args: &Args) -> Result<(), CliError> {
-    // Everything is validated before anything is computed or written.
-    let opts = args.rank_options()?;
-    let started = std::time::Instant::now();
-    let (problem, grid, setting, names, materials) = match &args.scene {
-        Some(path) => {
-            let grid = args.view.grid()?;
-            let scene = polbrdf_io::read_scene(path)?;
-            let (target, t_name, t_arg) =
-                material_of(&args.target, "--target", Some(&scene.target))?;
-            let (background, b_name, b_arg) =
-                material_of(&args.background, "--background", Some(&scene.background))?;
-            // Errors name the option, or the scene's table the material came from.
-            let what = |arg: &Option<String>, option: &str, table: &str| match arg {
-                Some(a) => format!("{option} {a}"),
-                None => format!("{}: [{table}] material", path.display()),
-            };
-            let observer = |spec: &polbrdf::MaterialSpec, t: Option<f64>, what: String| {
-                Observer::new(
-                    spec,
-                    &scene.thermal.with_surface_temperature(t),
-                    &scene.spectrum,
-                )
-                .map_err(|e| crate::radiance::observer_error(&what, &e, &scene.spectrum))
-            };
-            // Valid but easy to get wrong: say so on standard error.
-            for (table, t) in [
-                ("target", scene.target.temperature_k),
-                ("background", scene.background.temperature_k),
-            ] {
-                // Only where emission matters: from 3 µm on (at 300 K, B_λ at 3 µm is already
-                // 1e-3 of its peak; in the visible it is below 1e-20).
-                let longest = match &scene.spectrum {
-                    polbrdf::Spectrum::Wavelength(l) => *l,
-                    polbrdf::Spectrum::Band(b, _) => b.range().1,
-                };
-                if t.is_none() && longest >= 3.0 {
-                    crate::note!(
-                        "polbrdf contrast: note: {}: [{table}] has no temperature_k, so the \
-                         {table} emits nothing (it only reflects the sky)",
-                        path.display()
-                    );
-                }
-            }
-            if scene.thermal.surface_temperature_k.is_some() {
-                crate::note!(
-                    "polbrdf contrast: note: {}: [surface] is for `polbrdf radiance`; contrast \
-                     uses the temperatures of [target] and [background]",
-                    path.display()
-                );
-            }
-            let problem = Contrast::scene(
-                observer(
-                    &target,
-                    scene.target.temperature_k,
-                    what(&args.target, "--target", "target"),
-                )?,
-                observer(
-                    &background,
-                    scene.background.temperature_k,
-                    what(&args.background, "--background", "background"),
-                )?,
-            );
-            let setting = Setting::Scene(Box::new(scene));
-            (problem, grid, setting, (t_name, b_name), (t_arg, b_arg))
-        }
-        None => {
-            let (light, grid) = args.view.build()?;
-            let spectrum = args.view.spectral.spectrum()?;
-            let (target, t_name, t_arg) = material_of(&args.target, "--target", None)?;
-            let (background, b_name, b_arg) = material_of(&args.background, "--background", None)?;
-            let nodes = materials_at(
-                &[
-                    (&target, "--target", &t_arg),
-                    (&background, "--background", &b_arg),
-                ],
-                &spectrum,
-            )?;
-            let spectral_json = crate::spectrum::to_json(&spectrum, nodes.len());
-            let problem = Contrast::spectral(
-                nodes
-                    .into_iter()
-                    .map(|(w, mut ms)| {
-                        let b = ms.remove(1);
-                        (w, ms.remove(0), b)
-                    })
-                    .collect(),
-                light,
-            );
-            let setting = Setting::Collimated {
-                light,
-                spectrum,
-                spectral_json,
-            };
-            (problem, grid, setting, (t_name, b_name), (t_arg, b_arg))
-        }
-    };
-    let map = problem.map(&grid);
-    let top = problem.rank(&map, &opts);
-    let elapsed = started.elapsed();
-    let (t_name, b_name) = &names;
-    let names = (t_name.as_str(), b_name.as_str());
-    let scene = matches!(setting, Setting::Scene(_));
-    // The null locus is where S1 changes sign while S2 vanishes identically: in scenes
-    // symmetric about the normal. Under a sun or an azimuth-dependent sky an S1 sign change
-    // is the AoLP turning through ±45°, no null: none is drawn or listed.
-    let nulls = scene.then(|| {
-        if problem.is_azimuth_independent() {
-            (
-                polarization_null(&map, true),
-                polarization_null(&map, false),
-            )
-        } else {
-            (Vec::new(), Vec::new())
-        }
-    });
-    let mut files = vec![
-        ("contrast.csv".to_string(), contrast_csv(&map, scene)),
-        (
-            "best.json".to_string(),
-            best_json(
-                args,
-                &setting,
-                &map,
-                &top,
-                &opts,
-                names,
-                &materials,
-                nulls.as_ref(),
-            ),
-        ),
-    ];
-    figures(
-        &mut files,
-        &map,
-        &top,
-        &opts,
-        &problem,
-        names,
-        nulls.as_ref(),
-    )?;
-    let paths = write_all(&args.out, &files)?;
-
-    let score_name = match opts.by {
+/// The summary on standard output: setting, null loci, the best directions.
+fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
+    let (t_name, b_name) = (&study.target.name, &study.background.name);
+    let score_name = match study.options.by {
         Ranking::DeltaDolp => "|ΔDoLP|",
         Ranking::PolarizationContrast => "polarization contrast |ΔS_lin|/mean S0",
     };
-    let lighting = match &setting {
+    let lighting = match &study.setting {
         Setting::Collimated {
             light, spectrum, ..
         } => format!(
             "{}; sun at θi = {}°, φi = {}°",
-            describe(&Some(spectrum.clone()).flatten()),
+            describe(spectrum.as_ref()),
             short(light.theta_i().to_degrees()),
             short(light.phi_i().to_degrees())
         ),
@@ -294,28 +147,31 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     println!(
         "polbrdf contrast: target {t_name}, background {b_name}{lighting}; {} viewing directions \
          in {:.0} ms",
-        grid.len(),
+        study.map.grid.len(),
         elapsed.as_secs_f64() * 1e3
     );
-    if let (Setting::Scene(s), Some((nt, nb)), true) =
-        (&setting, &nulls, problem.is_azimuth_independent())
-    {
-        let t = polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum);
+    let symmetric = study.problem.is_azimuth_independent();
+    if let (Some(n), true) = (&study.nulls, symmetric) {
         println!(
             "  polarization null: {} direction(s) on the target's map, {} on the background's{}",
-            nt.len(),
-            nb.len(),
-            t.map_or(String::new(), |t| format!(
-                "; under this uniform sky both lose their polarization everywhere at {t:.2} K"
-            ))
+            n.target.len(),
+            n.background.len(),
+            n.uniform_sky_temperature_k
+                .map_or(String::new(), |t| format!(
+                    "; under this uniform sky both lose their polarization everywhere at {t:.2} K"
+                ))
         );
     }
     println!(
         "  best directions by {score_name} (θr ≤ {}°, at least {}° apart{}){}:",
-        short(args.max_zenith_deg),
-        short(args.min_separation_deg),
-        if opts.refine { ", refined" } else { "" },
-        if problem.is_azimuth_independent() {
+        short(study.rank.max_zenith_deg),
+        short(study.rank.min_separation_deg),
+        if study.options.refine {
+            ", refined"
+        } else {
+            ""
+        },
+        if symmetric {
             "; the scene is symmetric about the surface normal, so each is a ring of view \
              directions at every azimuth, listed at φr = 0"
         } else {
@@ -326,7 +182,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         "  {:>3} {:>8} {:>8} {:>11} {:>11} {:>8} {:>9} {:>9}",
         "#", "θr (°)", "φr (°)", "DoLP targ.", "DoLP back.", "ΔDoLP", "I_t/I_b", "pol. con."
     );
-    for (k, s) in top.iter().enumerate() {
+    for (k, s) in study.top.iter().enumerate() {
         println!(
             "  {:>3} {:>8.2} {:>8.2} {:>11.4} {:>11.4} {:>+8.4} {:>9.3} {:>9.4}",
             k + 1,
@@ -339,18 +195,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             s.polarization_contrast()
         );
     }
-    println!("Wrote {} files to {}", paths.len(), args.out.display());
-    Ok(())
-}
-
-/// Where target and background are compared: under one collimated source, or in a scene.
-enum Setting {
-    Collimated {
-        light: Illumination,
-        spectrum: Option<polbrdf::Spectrum>,
-        spectral_json: Value,
-    },
-    Scene(Box<polbrdf_io::Scene>),
 }
 
 fn score_label(by: Ranking) -> &'static str {
@@ -358,165 +202,6 @@ fn score_label(by: Ranking) -> &'static str {
         Ranking::DeltaDolp => "|ΔDoLP|",
         Ranking::PolarizationContrast => "pol. contrast",
     }
-}
-
-const COLUMNS: [&str; 12] = [
-    "theta_r_deg",
-    "phi_r_deg",
-    "dolp_target",
-    "dolp_background",
-    "delta_dolp",
-    "intensity_target",
-    "intensity_background",
-    "intensity_ratio",
-    "aolp_target_deg",
-    "aolp_background_deg",
-    "aolp_difference_deg",
-    "polarization_contrast",
-];
-
-fn row(s: &ContrastSample) -> Vec<f64> {
-    vec![
-        deg(s.theta_r),
-        deg(s.phi_r),
-        s.dolp_target(),
-        s.dolp_background(),
-        s.delta_dolp(),
-        s.target.0[0],
-        s.background.0[0],
-        s.intensity_ratio(),
-        s.target.aolp().to_degrees(),
-        s.background.aolp().to_degrees(),
-        s.aolp_difference().to_degrees(),
-        s.polarization_contrast(),
-    ]
-}
-
-/// `contrast.csv`: the columns of [`COLUMNS`], and in a scene `radiance_difference`
-/// (S0 of the target − S0 of the background) as well.
-fn contrast_csv(map: &ContrastMap, scene: bool) -> Vec<u8> {
-    if scene {
-        let header: Vec<&str> = COLUMNS
-            .iter()
-            .copied()
-            .chain(["radiance_difference"])
-            .collect();
-        csv(
-            &header,
-            map.samples.iter().map(|s| {
-                let mut r = row(s);
-                r.push(s.radiance_difference());
-                r
-            }),
-        )
-    } else {
-        csv(&COLUMNS, map.samples.iter().map(row))
-    }
-}
-
-/// A number for JSON: `null` when not finite (e.g. an infinite intensity ratio).
-fn num(v: f64) -> Value {
-    serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
-}
-
-fn entry(s: &ContrastSample) -> Value {
-    let mut m = serde_json::Map::new();
-    for (k, v) in COLUMNS.iter().zip(row(s)) {
-        m.insert((*k).to_string(), num(v));
-    }
-    Value::Object(m)
-}
-
-#[allow(clippy::too_many_arguments)]
-fn best_json(
-    args: &Args,
-    setting: &Setting,
-    map: &ContrastMap,
-    top: &[ContrastSample],
-    opts: &RankOptions,
-    (t_name, b_name): (&str, &str),
-    (t_arg, b_arg): &(String, String),
-    nulls: Option<&NullLoci>,
-) -> Vec<u8> {
-    // As `Contrast::is_azimuth_independent`: a scene without a sun, under a sky that is the
-    // same at every azimuth.
-    let azimuth_independent =
-        matches!(setting, Setting::Scene(s) if s.thermal.is_azimuth_independent());
-    let mut doc = json!({
-        "best": top.first().map(entry),
-        "top": top.iter().map(entry).collect::<Vec<_>>(),
-        "ranking": {
-            "by": opts.by.as_str(),
-            "min_separation_deg": num(args.min_separation_deg),
-            "max_zenith_deg": num(args.max_zenith_deg),
-            "refined": opts.refine,
-            "azimuth_independent": azimuth_independent,
-        },
-        "target": {"material": t_arg, "name": t_name},
-        "background": {"material": b_arg, "name": b_name},
-        "grid": {
-            "theta_step_deg": num(deg(map.grid.theta_step())),
-            "phi_step_deg": num(deg(map.grid.phi_step())),
-            "directions": map.grid.len(),
-        },
-    });
-    match setting {
-        Setting::Collimated {
-            light,
-            spectral_json,
-            ..
-        } => {
-            doc["illumination"] = json!({
-                "sun_zenith_deg": num(light.theta_i().to_degrees()),
-                "sun_azimuth_deg": num(light.phi_i().to_degrees()),
-                "stokes_normalized": light.stokes().0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-            });
-            doc["spectrum"] = spectral_json.clone();
-        }
-        Setting::Scene(s) => {
-            let nodes = s.spectrum.integral_nodes(&[]).len();
-            let null_t = azimuth_independent
-                .then(|| polbrdf::analysis::scene::null_temperature(&s.thermal.sky, &s.spectrum))
-                .flatten();
-            let locus = |v: &[(f64, f64)]| -> Vec<Value> {
-                v.iter()
-                    .map(|(t, p)| json!([num(deg(*t)), num(deg(*p))]))
-                    .collect()
-            };
-            doc["scene"] = json!({
-                "file": s.path.display().to_string(),
-                "target_temperature_k": s.target.temperature_k,
-                "background_temperature_k": s.background.temperature_k,
-                "sky": sky_json(&s.thermal.sky),
-                "transmittance": num(s.thermal.atmosphere.transmittance),
-                "path_radiance": num(s.thermal.atmosphere.path_radiance),
-                "units": match s.spectrum {
-                    polbrdf::Spectrum::Wavelength(_) => "W·m⁻²·sr⁻¹·µm⁻¹ (spectral radiance)",
-                    polbrdf::Spectrum::Band(..) => "W·m⁻²·sr⁻¹ (band-integrated radiance)",
-                },
-            });
-            doc["spectrum"] = crate::spectrum::to_json(&Some(s.spectrum.clone()), nodes);
-            if doc["spectrum"].get("integrated").is_some() {
-                doc["spectrum"]["integrated"] =
-                    json!("Stokes radiance, integral of response × radiance over the band");
-            }
-            if let Some((nt, nb)) = nulls {
-                doc["polarization_null"] = json!({
-                    "what": if azimuth_independent {
-                        "view directions (theta_r_deg, phi_r_deg) where S1 changes sign: the emitted and reflected polarizations cancel"
-                    } else {
-                        "none computed: with a sun or an azimuth-dependent sky S2 does not vanish, and an S1 sign change is the AoLP turning through ±45°, not a null"
-                    },
-                    "target": locus(nt),
-                    "background": locus(nb),
-                    "uniform_sky_null_temperature_k": null_t.map(num),
-                });
-            }
-        }
-    }
-    let mut text = serde_json::to_string_pretty(&doc).expect("JSON of numbers and strings");
-    text.push('\n');
-    text.into_bytes()
 }
 
 /// Marks for the ranked directions: the best one, then numbered rings.
@@ -541,15 +226,17 @@ fn ranked_marks(top: &[ContrastSample], by: Ranking) -> Vec<PolarMark> {
         .collect()
 }
 
-fn figures(
-    files: &mut Vec<Output>,
-    map: &ContrastMap,
-    top: &[ContrastSample],
-    opts: &RankOptions,
-    problem: &Contrast,
-    (t_name, b_name): (&str, &str),
-    nulls: Option<&NullLoci>,
-) -> Result<(), CliError> {
+/// The polar maps (PNG and SVG) of a study.
+// Over 100 lines: one panel after the other, sharing the colour limits and marks computed at
+// the top; split, the pieces would pass them all around.
+fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), CliError> {
+    let (map, top, opts, problem) = (&study.map, &study.top, &study.options, &study.problem);
+    let (t_name, b_name) = (&study.target.name, &study.background.name);
+    let nulls = study
+        .nulls
+        .as_ref()
+        .map(|n| (n.target.clone(), n.background.clone()));
+    let nulls = nulls.as_ref();
     let grid = &map.grid;
     let values =
         |f: fn(&ContrastSample) -> f64| -> Vec<f64> { map.samples.iter().map(f).collect() };
@@ -559,21 +246,9 @@ fn figures(
         .cloned()
         .chain(ranked_marks(top, opts.by))
         .collect();
-    let input = if problem
+    let input = problem
         .light()
-        .is_none_or(|l| l.stokes() == Stokes::unpolarized())
-    {
-        String::new()
-    } else {
-        let s = problem.light().expect("collimated").stokes().0;
-        format!(
-            " (input S = {}, {}, {}, {})",
-            short(s[0]),
-            short(s[1]),
-            short(s[2]),
-            short(s[3])
-        )
-    };
+        .map_or_else(String::new, |l| input_stokes(&l, (" (input S = ", ")")));
     // Colour limits from the directions that are ranked (θr ≤ --max-zenith-deg): toward
     // grazing, values (and, for some parameter sets, unphysical ones) would set the scale of
     // the whole map; beyond, the colours saturate. `v` is aligned with the map's samples.
@@ -728,30 +403,4 @@ fn figures(
         ));
     }
     render_all(files, &list)
-}
-
-/// A scene's sky as JSON: its model and its parameters, as the scene file names them.
-fn sky_json(sky: &polbrdf::analysis::SkyModel) -> Value {
-    use polbrdf::analysis::SkyModel;
-    match sky {
-        SkyModel::None => json!({"model": "none"}),
-        SkyModel::Uniform { radiance } => json!({"model": "uniform", "radiance": num(*radiance)}),
-        SkyModel::Thermal { temperature_k } => {
-            json!({"model": "thermal", "temperature_k": num(*temperature_k)})
-        }
-        SkyModel::Profile(p) => {
-            let (z, l) = p.table();
-            json!({"model": "profile", "zenith_deg": z, "radiance": l})
-        }
-        SkyModel::ClearSky {
-            irradiance,
-            dop_max,
-        } => {
-            json!({"model": "cie-clear", "irradiance": num(*irradiance), "dop_max": num(*dop_max)})
-        }
-        SkyModel::Table(t) => {
-            let (z, p) = t.grid();
-            json!({"model": "table", "theta_deg": z, "phi_deg": p})
-        }
-    }
 }

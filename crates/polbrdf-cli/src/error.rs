@@ -101,3 +101,77 @@ impl From<polbrdf_plot::Error> for CliError {
         CliError::Plot(e)
     }
 }
+
+/// The command-line option of a task request field: `sun_zenith_deg` → `--sun-zenith-deg`.
+pub fn option_of(field: &str) -> String {
+    format!("--{}", field.replace('_', "-"))
+}
+
+/// The request fields that task messages name in backticks (`polbrdf_tasks::TaskError`): only
+/// these are shown as options, since a message also quotes model and file words in backticks.
+const FIELD_REFERENCES: [&str; 2] = ["wavelength_um", "band"];
+
+/// A task message with the request fields it names in backticks (`` `wavelength_um` ``) shown
+/// as options (`--wavelength-um`).
+fn with_options(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(start) = rest.find('`') {
+        let Some(len) = rest[start + 1..].find('`') else {
+            break;
+        };
+        let name = &rest[start + 1..start + 1 + len];
+        out.push_str(&rest[..start]);
+        if FIELD_REFERENCES.contains(&name) {
+            out.push_str(&option_of(name));
+        } else {
+            out.push_str(&rest[start..start + len + 2]);
+        }
+        rest = &rest[start + len + 2..];
+    }
+    out.push_str(rest);
+    out
+}
+
+impl From<polbrdf_tasks::TaskError> for CliError {
+    fn from(e: polbrdf_tasks::TaskError) -> Self {
+        use polbrdf_tasks::TaskError;
+        match e {
+            TaskError::Io(e) => CliError::Io(e),
+            TaskError::Model(e) => CliError::Model(e),
+            TaskError::Fit(e) => CliError::Fit(e),
+            TaskError::Invalid { field, message } => {
+                CliError::Invalid(format!("{}: {}", option_of(&field), with_options(&message)))
+            }
+            TaskError::Usage { field, message } => {
+                CliError::Usage(format!("{} {}", option_of(&field), with_options(&message)))
+            }
+            other => CliError::Invalid(other.to_string()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn task_fields_become_options() {
+        assert_eq!(option_of("sun_zenith_deg"), "--sun-zenith-deg");
+        assert_eq!(
+            with_options("give `wavelength_um` or `band`; the `paper` form, `Keep.This` and `x"),
+            "give --wavelength-um or --band; the `paper` form, `Keep.This` and `x"
+        );
+        let e = CliError::from(polbrdf_tasks::TaskError::invalid(
+            "top",
+            "must be at least 1",
+        ));
+        assert_eq!(e.to_string(), "--top: must be at least 1");
+        assert_eq!(e.exit_code(), 3);
+        let e = CliError::from(polbrdf_tasks::TaskError::usage("target", "is required"));
+        assert_eq!(
+            (e.to_string().as_str(), e.exit_code()),
+            ("--target is required", 2)
+        );
+    }
+}

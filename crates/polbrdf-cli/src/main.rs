@@ -13,6 +13,7 @@ mod emission;
 mod error;
 mod eval;
 mod export;
+mod figures;
 mod fit;
 mod limits;
 mod lut;
@@ -24,6 +25,7 @@ mod radiance;
 mod reproduce;
 mod spectrum;
 mod sweep;
+mod view;
 
 use error::CliError;
 use std::process::ExitCode;

@@ -32,3 +32,20 @@ macro_rules! note {
         $crate::output::note(&format!("{}\n", format_args!($($arg)*)))
     };
 }
+
+/// A file to write: name in the output directory and content.
+pub type OutputFile = (String, Vec<u8>);
+
+/// Creates `dir` and writes every file atomically; returns the paths.
+pub fn write_all(dir: &Path, files: &[OutputFile]) -> Result<Vec<std::path::PathBuf>, CliError> {
+    Ok(polbrdf_io::write_files(dir, files)?)
+}
+
+/// A CSV document from a header and rows of numbers (shortest round-trip form).
+pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
+    let mut t = polbrdf_io::CsvTable::new(header);
+    for row in rows {
+        t.row(&row);
+    }
+    t.into_bytes()
+}

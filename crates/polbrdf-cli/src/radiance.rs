@@ -5,22 +5,10 @@
 
 use crate::error::CliError;
 use crate::output::write_output;
-use crate::spectrum::{describe, load_spec};
-use polbrdf::analysis::scene::Observer;
 use polbrdf_io::CsvTable;
+use polbrdf_tasks::radiance::{radiance, RadianceRequest, RadianceTable, Views};
+use polbrdf_tasks::spectrum::describe;
 use std::path::PathBuf;
-
-/// The columns of the radiance table.
-pub const COLUMNS: [&str; 8] = [
-    "theta_r_deg",
-    "phi_r_deg",
-    "s0",
-    "s1",
-    "s2",
-    "s3",
-    "dolp",
-    "aolp_deg",
-];
 
 /// `polbrdf radiance`.
 #[derive(clap::Args, Debug)]
@@ -60,32 +48,6 @@ pub struct Args {
     pub output: Option<PathBuf>,
 }
 
-/// An error of [`Observer::new`] for the material `what` names. Over a band, a wavelength
-/// outside the material's data is one of the quadrature's nodes: the message names the band.
-pub(crate) fn observer_error(
-    what: &str,
-    e: &polbrdf::Error,
-    spectrum: &polbrdf::Spectrum,
-) -> CliError {
-    if let (
-        polbrdf::Spectrum::Band(band, _),
-        polbrdf::Error::WavelengthOutOfRange {
-            material, range, ..
-        },
-    ) = (spectrum, e)
-    {
-        let (lo, hi) = band.range();
-        return CliError::Invalid(format!(
-            "{what}: the band {} ({lo}–{hi} µm) reaches outside the data of `{material}` \
-             ({} – {} µm)",
-            band.name(),
-            range.0,
-            range.1
-        ));
-    }
-    CliError::Invalid(format!("{what}: {e}"))
-}
-
 /// Runs `polbrdf radiance`.
 pub fn run(args: &Args) -> Result<(), CliError> {
     if let Some(out) = &args.output {
@@ -93,79 +55,42 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         inputs.extend(args.input.as_deref());
         polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
     }
-    let views: Vec<(f64, f64)> = match &args.input {
-        Some(path) => polbrdf_io::read_views_csv(path)?,
+    let views = match &args.input {
+        Some(path) => Views::List(polbrdf_io::read_views_csv(path)?),
         None => {
-            let thetas: Vec<f64> = if args.theta_deg.is_empty() {
-                (0..18).map(|k| 5.0 * f64::from(k)).collect()
-            } else {
-                args.theta_deg.clone()
-            };
-            let phis = if args.phi_deg.is_empty() {
-                vec![0.0]
-            } else {
-                args.phi_deg.clone()
-            };
-            if let Some(bad) = thetas.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
-                return Err(CliError::Invalid(format!(
-                    "--theta-deg = {bad}: the view zenith angle must lie in [0, 90)"
-                )));
-            }
-            if let Some(bad) = phis.iter().find(|p| !p.is_finite()) {
-                return Err(CliError::Invalid(format!(
-                    "--phi-deg = {bad}: must be finite"
-                )));
-            }
+            let (thetas, phis) = Views::grid_axes(&args.theta_deg, &args.phi_deg)?;
             crate::limits::product_at_most(
                 "--theta-deg × --phi-deg",
                 thetas.len(),
                 phis.len(),
                 crate::limits::ANGLES,
             )?;
-            thetas
-                .iter()
-                .flat_map(|t| phis.iter().map(move |p| (*t, *p)))
-                .collect()
+            Views::Grid {
+                theta_deg: thetas,
+                phi_deg: phis,
+            }
         }
     };
-    let scene = polbrdf_io::read_scene(&args.scene)?;
-    let (spec, name) = load_spec(&args.material, "--material")?;
-    let observer = Observer::new(&spec, &scene.thermal, &scene.spectrum).map_err(|e| {
-        observer_error(
-            &format!("--material {}", args.material),
-            &e,
-            &scene.spectrum,
-        )
+    let table = radiance(&RadianceRequest {
+        material: args.material.clone(),
+        scene: args.scene.clone(),
+        views,
     })?;
-    let radians: Vec<(f64, f64)> = views
-        .iter()
-        .map(|(t, p)| (t.to_radians(), p.to_radians()))
-        .collect();
-    let observed = observer.observe(&radians);
-    let mut table = CsvTable::new(COLUMNS);
-    for ((t, p), r) in views.iter().zip(&observed) {
-        let s = r.stokes;
-        table.row(&[
-            *t,
-            *p,
-            s.0[0],
-            s.0[1],
-            s.0[2],
-            s.0[3],
-            s.dolp(),
-            s.aolp().to_degrees(),
-        ]);
+    let mut csv = CsvTable::new(RadianceTable::COLUMNS);
+    for row in table.values() {
+        csv.row(&row);
     }
-    write_output(args.output.as_deref(), &table.into_bytes())?;
-    let unit = match scene.spectrum {
+    write_output(args.output.as_deref(), &csv.into_bytes())?;
+    let unit = match table.scene.spectrum {
         polbrdf::Spectrum::Wavelength(_) => "W·m⁻²·sr⁻¹·µm⁻¹",
         polbrdf::Spectrum::Band(..) => "W·m⁻²·sr⁻¹ (band-integrated)",
     };
     crate::note!(
-        "polbrdf radiance: {name}{} in {}: {} view(s); Stokes radiance in {unit}",
-        describe(&Some(scene.spectrum.clone())),
-        scene.path.display(),
-        views.len()
+        "polbrdf radiance: {}{} in {}: {} view(s); Stokes radiance in {unit}",
+        table.material.name,
+        describe(Some(&table.scene.spectrum)),
+        table.scene.path.display(),
+        table.rows.len()
     );
     Ok(())
 }

@@ -4,7 +4,7 @@
 //! wavelength (logarithmic axis).
 
 use crate::error::CliError;
-use crate::map::{write_all, Output};
+use crate::output::{write_all, OutputFile as Output};
 use crate::spectrum::load_spec;
 use polbrdf::engine::Engine;
 use polbrdf::{Geometry, MaterialSpec};

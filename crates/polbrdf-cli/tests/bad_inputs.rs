@@ -555,6 +555,8 @@ fn table_common() -> Vec<Case> {
         radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
         radiance_scene("band step 0", "[band]\nresponse = \"b.csv\"\nstep_um = 0\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "> 0"]),
         radiance_scene("scene band file missing", "[band]\nresponse = \"nob.csv\"\n", vec![], 3, &["s.toml:2", "`band.response`", "nob.csv", "cannot read"]),
+        radiance_scene("contrast scene given to radiance", "wavelength_um = 10\n[surface]\ntemperature_k = 300\n[target]\ntemperature_k = 305\n", vec![], 3, &["s.toml", "[target]", "[surface]"]),
+        radiance_scene("background table given to radiance", "wavelength_um = 10\n[background]\nmaterial = \"paint\"\n", vec![], 3, &["s.toml", "[background]"]),
         radiance_scene("scene band file malformed", "[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t("wavelength_um,response\n8,1\n12,lots\n"))], 3, &["s.toml:2", "`band.response`", "b.csv:3", "`response`", "lots"]),
         case("band out of a spectral material's data (radiance)", vec![("s.toml", t("[band]\nresponse = \"far.csv\"\n[surface]\ntemperature_k = 300\n")), ("far.csv", t(FAR_BAND)), ("m.toml", t(SPECTRAL))],
             &["radiance", "--material", "{d}/m.toml", "--scene", "{d}/s.toml", "--output", "{d}/out.csv"], 3, &["--material", "m.toml", "far.csv", "500–600 µm", "Au/Johnson", "1.937"]),

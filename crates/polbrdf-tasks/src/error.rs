@@ -15,7 +15,9 @@ pub enum TaskError {
     #[error("fit: {0}")]
     Fit(#[from] polbrdf_fit::FitError),
     /// A value of the request is malformed or out of range. `field` is the request's name for it
-    /// (the CLI's option name and the Python keyword are derived from it by the adapters).
+    /// (the CLI's option name and the Python keyword are derived from it by the adapters); the
+    /// message names other request fields in backticks (`` `wavelength_um` ``), for the adapters
+    /// to show as theirs.
     #[error("{field}: {message}")]
     Invalid {
         /// The request field.
@@ -23,12 +25,32 @@ pub enum TaskError {
         /// What is wrong, and what would be accepted.
         message: String,
     },
+    /// A required value is missing, or values that exclude each other are combined (the CLI's
+    /// usage error). `field` as for [`TaskError::Invalid`].
+    #[error("{field}: {message}")]
+    Usage {
+        /// The request field.
+        field: String,
+        /// What is missing, and what would be accepted.
+        message: String,
+    },
 }
 
 impl TaskError {
     /// A request value out of range or malformed.
     pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Self {
-        TaskError::Invalid { field: field.into(), message: message.into() }
+        TaskError::Invalid {
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// A required request value is missing.
+    pub fn usage(field: impl Into<String>, message: impl Into<String>) -> Self {
+        TaskError::Usage {
+            field: field.into(),
+            message: message.into(),
+        }
     }
 }
 

@@ -10,6 +10,16 @@
 //! Dependencies point one way: `polbrdf` ← `polbrdf-io`, `polbrdf-fit` ← `polbrdf-tasks` ←
 //! `polbrdf-cli`, the Python module. Nothing below this crate imports it.
 
+pub mod albedo;
+pub mod check;
+pub mod contrast;
+mod contrast_json;
+pub mod emission;
 mod error;
+pub mod hemisphere;
+pub mod radiance;
+pub mod scene;
+pub mod spectrum;
 
+pub use contrast_json::sky_json;
 pub use error::{TaskError, TaskResult};

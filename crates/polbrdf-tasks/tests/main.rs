@@ -1,1 +1,11 @@
-//! Tests of the task layer: one module per job (added with the jobs).
+//! Tests of the task layer: one module per job, each asserting physics or behaviour (analytic
+//! limits, symmetries, the request's validation), not a re-computation of the same code.
+
+mod common;
+
+mod albedo_check;
+mod contrast;
+mod emission;
+mod radiance;
+mod scene;
+mod spectrum;

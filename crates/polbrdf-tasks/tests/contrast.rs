@@ -1,0 +1,197 @@
+//! Contrast studies: a material against itself, the ranking's order and separation, a scene
+//! symmetric about the normal, the request's validation.
+
+use crate::common::{band_scene, example};
+use polbrdf::analysis::contrast::{separation, Ranking};
+use polbrdf_tasks::contrast::{contrast, ContrastRequest, RankRequest, SourceRequest};
+use polbrdf_tasks::hemisphere::LightRequest;
+use polbrdf_tasks::spectrum::SpectralRequest;
+use polbrdf_tasks::TaskError;
+
+fn collimated(target: &str, background: &str, rank: RankRequest) -> ContrastRequest {
+    ContrastRequest {
+        target: Some(target.into()),
+        background: Some(background.into()),
+        source: SourceRequest::Collimated {
+            light: LightRequest::sun(40.0, 30.0),
+            spectral: SpectralRequest::default(),
+        },
+        grid_deg: (5.0, 10.0),
+        rank,
+    }
+}
+
+#[test]
+fn a_material_against_itself_has_no_contrast_anywhere() {
+    let s = contrast(&collimated("paint", "paint", RankRequest::default())).unwrap();
+    assert_eq!(s.map.samples.len(), 18 * 36);
+    for x in &s.map.samples {
+        assert_eq!(x.delta_dolp(), 0.0);
+        assert_eq!(x.polarization_contrast(), 0.0);
+        assert_eq!(x.aolp_difference(), 0.0);
+        assert_eq!(x.intensity_ratio(), 1.0);
+    }
+    for row in s.rows() {
+        assert_eq!(row[4], 0.0, "delta_dolp column");
+    }
+    assert!(s.nulls.is_none(), "no null loci under a collimated source");
+}
+
+#[test]
+fn the_ranking_is_best_first_apart_and_below_the_zenith_limit() {
+    let target = example("olive-paint.toml").display().to_string();
+    let background = example("dry-soil.toml").display().to_string();
+    for by in [Ranking::DeltaDolp, Ranking::PolarizationContrast] {
+        let rank = RankRequest {
+            by,
+            top: 6,
+            min_separation_deg: 15.0,
+            max_zenith_deg: 70.0,
+            refine: false,
+        };
+        let s = contrast(&collimated(&target, &background, rank)).unwrap();
+        assert_eq!(s.top.len(), 6);
+        let best_anywhere = s
+            .map
+            .samples
+            .iter()
+            .filter(|x| x.theta_r <= 70f64.to_radians() + 1e-12)
+            .map(|x| x.score(by))
+            .fold(0.0, f64::max);
+        assert_eq!(
+            s.top[0].score(by),
+            best_anywhere,
+            "{by:?}: the best node first"
+        );
+        for (k, a) in s.top.iter().enumerate() {
+            assert!(a.theta_r <= 70f64.to_radians() + 1e-12);
+            for b in &s.top[k + 1..] {
+                assert!(a.score(by) >= b.score(by), "{by:?}: sorted");
+                assert!(separation(&a.direction(), &b.direction()) >= 15f64.to_radians() - 1e-12);
+            }
+        }
+        // The sun is at φ = 30°: the map is mirror-symmetric about that plane (φ ↦ 60° − φ
+        // maps the 10° grid onto itself).
+        let np = s.map.grid.n_phi();
+        for (i, a) in s.map.samples.iter().enumerate() {
+            let (k, j) = (i / np, i % np);
+            let m = &s.map.samples[k * np + (np + 6 - j) % np];
+            let (x, y) = (a.score(by), m.score(by));
+            assert!(
+                (x - y).abs() <= 1e-9 * x.abs().max(1e-12),
+                "{by:?}: {a:?} vs {m:?}"
+            );
+        }
+        let json = s.best_json();
+        assert_eq!(json["top"].as_array().unwrap().len(), 6);
+        assert_eq!(json["ranking"]["by"], by.as_str());
+        assert_eq!(json["best"], json["top"][0]);
+    }
+}
+
+#[test]
+fn a_symmetric_scene_has_rings_and_an_isothermal_target_is_unpolarized() {
+    // Under a uniform 280 K sky, a target at 280 K sits in an isothermal enclosure:
+    // unpolarized at every view; the null temperature of the sky is its own.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = band_scene(
+        dir.path(),
+        "sym.toml",
+        &format!(
+            "[sky]\nmodel = \"thermal\"\ntemperature_k = 280\n[target]\nmaterial = {:?}\n\
+             temperature_k = 280\n[background]\nmaterial = {:?}\ntemperature_k = 300\n",
+            example("painted-aluminium-lwir.toml").display().to_string(),
+            example("painted-aluminium-lwir.toml").display().to_string(),
+        ),
+    );
+    let s = contrast(&ContrastRequest {
+        target: None,
+        background: None,
+        source: SourceRequest::Scene(scene),
+        grid_deg: (5.0, 30.0),
+        rank: RankRequest::default(),
+    })
+    .unwrap();
+    assert!(s.problem.is_azimuth_independent());
+    let nulls = s.nulls.as_ref().unwrap();
+    let t = nulls.uniform_sky_temperature_k.unwrap();
+    assert!((t - 280.0).abs() < 1e-6, "{t}");
+    let json = s.best_json();
+    assert_eq!(
+        json["polarization_null"]["uniform_sky_null_temperature_k"],
+        t
+    );
+    assert_eq!(json["ranking"]["azimuth_independent"], true);
+    for x in &s.map.samples {
+        assert!(x.dolp_target() < 1e-9, "{x:?}");
+        // The background, warmer than the sky, emits p-polarized light (S1 < 0) off normal.
+        assert!(x.theta_r < 1e-9 || x.background.0[1] < 0.0, "{x:?}");
+    }
+    assert!(
+        nulls.background.is_empty(),
+        "S1 < 0 everywhere: no null on the background"
+    );
+    // Rings: the same values at every azimuth of a zenith.
+    let np = s.map.grid.n_phi();
+    for ring in s.map.samples.chunks(np) {
+        for x in ring {
+            assert_eq!(x.background, ring[0].background);
+        }
+    }
+    let first_phi = s.map.grid.phis()[0];
+    assert!(
+        s.top.iter().all(|x| x.phi_r == first_phi),
+        "rings listed at the first azimuth"
+    );
+    assert!(s.warnings.is_empty());
+}
+
+#[test]
+fn the_request_is_validated_with_its_fields() {
+    let bad = |rank: RankRequest, field: &str| {
+        let e = contrast(&collimated("paint", "glass", rank)).unwrap_err();
+        assert!(
+            matches!(&e, TaskError::Invalid { field: f, .. } if f == field),
+            "{e}"
+        );
+    };
+    let d = RankRequest::default();
+    bad(RankRequest { top: 0, ..d }, "top");
+    bad(
+        RankRequest {
+            min_separation_deg: 181.0,
+            ..d
+        },
+        "min_separation_deg",
+    );
+    bad(
+        RankRequest {
+            max_zenith_deg: 90.0,
+            ..d
+        },
+        "max_zenith_deg",
+    );
+    let mut r = collimated("paint", "glass", d);
+    r.target = None;
+    let e = contrast(&r).unwrap_err();
+    assert!(
+        matches!(&e, TaskError::Usage { field, .. } if field == "target"),
+        "{e}"
+    );
+    r.target = Some("paint".into());
+    r.source = SourceRequest::Collimated {
+        light: LightRequest {
+            sun_zenith_deg: None,
+            sun_azimuth_deg: 0.0,
+            stokes: None,
+        },
+        spectral: SpectralRequest::default(),
+    };
+    let e = contrast(&r).unwrap_err();
+    assert!(
+        matches!(&e, TaskError::Usage { field, .. } if field == "sun_zenith_deg"),
+        "{e}"
+    );
+    assert_eq!(d.min_separation_deg, 10.0);
+    assert_eq!(d.max_zenith_deg, 80.0);
+}
