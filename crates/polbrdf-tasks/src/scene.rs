@@ -5,8 +5,11 @@
 
 use crate::error::{TaskError, TaskResult};
 use crate::spectrum::NamedMaterial;
-use polbrdf::analysis::scene::Observer;
-use polbrdf::Spectrum;
+use polbrdf::analysis::contrast::Illumination;
+use polbrdf::analysis::scene::{Observer, Sun};
+use polbrdf::analysis::sky::{TableSky, ZenithProfile};
+use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
+use polbrdf::{Spectrum, Stokes};
 use polbrdf_io::Scene;
 use std::path::Path;
 
@@ -148,5 +151,147 @@ pub fn radiance_units(spectrum: &Spectrum) -> &'static str {
     match spectrum {
         Spectrum::Wavelength(_) => "W·m⁻²·sr⁻¹·µm⁻¹ (spectral radiance)",
         Spectrum::Band(..) => "W·m⁻²·sr⁻¹ (band-integrated radiance)",
+    }
+}
+
+/// A sky in the scene file's vocabulary (`[sky] model = …` with its keys), for adapters that
+/// build a scene from options rather than from a file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SkyRequest {
+    /// `model = "none"`.
+    None,
+    /// `model = "uniform"`: `radiance`, W·m⁻²·sr⁻¹·µm⁻¹.
+    Uniform {
+        /// Spectral radiance.
+        radiance: f64,
+    },
+    /// `model = "thermal"`: brightness `temperature_k`.
+    Thermal {
+        /// K.
+        temperature_k: f64,
+    },
+    /// `model = "profile"`: unpolarized radiance against zenith angle (0° … 90°).
+    Profile {
+        /// Zenith angles, degrees.
+        zenith_deg: Vec<f64>,
+        /// Spectral radiances.
+        radiance: Vec<f64>,
+    },
+    /// `model = "cie-clear"`: horizontal `irradiance` and `dop_max` (default
+    /// [`SkyModel::DEFAULT_DOP_MAX`]); needs a sun.
+    ClearSky {
+        /// W·m⁻²·µm⁻¹.
+        irradiance: f64,
+        /// In [0, 1]; `None`: the default.
+        dop_max: Option<f64>,
+    },
+    /// `model = "table"`: Stokes radiances on a full grid, `stokes[i·nφ + j]` at
+    /// `(theta_deg[i], phi_deg[j])`.
+    Table {
+        /// Zenith angles, degrees.
+        theta_deg: Vec<f64>,
+        /// Azimuths, degrees.
+        phi_deg: Vec<f64>,
+        /// Stokes vectors, zenith-major.
+        stokes: Vec<[f64; 4]>,
+    },
+}
+
+/// The sun of a scene in the file's vocabulary (`[sun]`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunRequest {
+    /// Zenith angle, degrees, in [0, 90).
+    pub zenith_deg: f64,
+    /// Azimuth, degrees; `None`: [`Sun::DEFAULT_AZIMUTH`].
+    pub azimuth_deg: Option<f64>,
+    /// Irradiance normal to the beam, W·m⁻²·µm⁻¹.
+    pub irradiance: f64,
+    /// Stokes vector (normalized to s0 = 1 as `--stokes`); `None`: unpolarized.
+    pub stokes: Option<[f64; 4]>,
+}
+
+/// A scene from options: the keys of a scene file's `[surface]`, `[sky]`, `[sun]` and
+/// `[atmosphere]`, each absent key taking the same default as in a file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneRequest {
+    /// `[surface] temperature_k`.
+    pub surface_temperature_k: Option<f64>,
+    /// `[sky]`.
+    pub sky: SkyRequest,
+    /// `[sun]`.
+    pub sun: Option<SunRequest>,
+    /// `[atmosphere] transmittance`; `None`: [`Atmosphere::default`].
+    pub transmittance: Option<f64>,
+    /// `[atmosphere] path_radiance`; `None`: [`Atmosphere::default`].
+    pub path_radiance: Option<f64>,
+}
+
+impl SceneRequest {
+    /// The validated scene.
+    ///
+    /// # Errors
+    /// [`TaskError::Model`] naming the scene key (`sky.dop_max`, `sun.zenith_deg`, …) of a
+    /// value out of range, a malformed profile or table, a clear sky without a sun.
+    pub fn thermal(&self) -> TaskResult<ThermalScene> {
+        let sun = match &self.sun {
+            None => None,
+            Some(s) => {
+                let azimuth_deg = s.azimuth_deg.unwrap_or(Sun::DEFAULT_AZIMUTH.to_degrees());
+                let stokes = match s.stokes {
+                    None => Stokes::unpolarized(),
+                    // The same normalization and checks as a collimated source's.
+                    Some(v) => {
+                        Illumination::from_degrees(s.zenith_deg, azimuth_deg, Stokes(v))?.stokes()
+                    }
+                };
+                Some(Sun {
+                    zenith: s.zenith_deg.to_radians() + 0.0,
+                    azimuth: azimuth_deg.to_radians(),
+                    irradiance: s.irradiance,
+                    stokes,
+                })
+            }
+        };
+        let sky = match &self.sky {
+            SkyRequest::None => SkyModel::None,
+            SkyRequest::Uniform { radiance } => SkyModel::Uniform {
+                radiance: *radiance,
+            },
+            SkyRequest::Thermal { temperature_k } => SkyModel::Thermal {
+                temperature_k: *temperature_k,
+            },
+            SkyRequest::Profile {
+                zenith_deg,
+                radiance,
+            } => SkyModel::Profile(ZenithProfile::new(zenith_deg.clone(), radiance.clone())?),
+            SkyRequest::ClearSky {
+                irradiance,
+                dop_max,
+            } => SkyModel::ClearSky {
+                irradiance: *irradiance,
+                dop_max: dop_max.unwrap_or(SkyModel::DEFAULT_DOP_MAX),
+            },
+            SkyRequest::Table {
+                theta_deg,
+                phi_deg,
+                stokes,
+            } => SkyModel::Table(TableSky::new(
+                theta_deg.clone(),
+                phi_deg.clone(),
+                stokes.iter().map(|s| Stokes(*s)).collect(),
+            )?),
+        };
+        let d = Atmosphere::default();
+        let scene = ThermalScene {
+            surface_temperature_k: self.surface_temperature_k,
+            sky,
+            atmosphere: Atmosphere {
+                transmittance: self.transmittance.unwrap_or(d.transmittance),
+                path_radiance: self.path_radiance.unwrap_or(d.path_radiance),
+            },
+            sun,
+        };
+        scene.validate()?;
+        Ok(scene)
     }
 }
