@@ -1,5 +1,6 @@
 //! Integration tests of the `polbrdf` binary (one test binary, modules by topic).
 
+mod adapters;
 mod albedo;
 #[cfg(feature = "arrow")]
 mod arrow;
