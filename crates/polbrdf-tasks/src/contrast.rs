@@ -6,14 +6,13 @@
 use crate::error::{TaskError, TaskResult};
 use crate::hemisphere::{deg, view_grid, LightRequest};
 use crate::scene::{contrast_warnings, observer, read_scene, Warning};
-use crate::spectrum::{materials_at, spectrum_json, NamedMaterial, SpectralRequest};
+use crate::spectrum::{materials_at, NamedMaterial, SpectralRequest};
 use polbrdf::analysis::contrast::{
     polarization_null, Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
 use polbrdf::analysis::scene::null_temperature;
 use polbrdf::Spectrum;
 use polbrdf_io::Scene;
-use serde_json::{json, Value};
 use std::path::PathBuf;
 
 /// How the best directions are listed (degrees, as given).
@@ -376,31 +375,4 @@ impl ContrastStudy {
             r
         })
     }
-
-    /// The `best.json` document (docs in the README): the best direction and the listed ones,
-    /// the ranking, materials, grid, and the source or the scene with its null loci.
-    pub fn best_json(&self) -> Value {
-        crate::contrast_json::best_json(self)
-    }
-}
-
-/// A number for JSON: `null` when not finite (e.g. an infinite intensity ratio).
-pub(crate) fn num(v: f64) -> Value {
-    serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
-}
-
-/// The spectrum of a collimated study as JSON.
-pub(crate) fn collimated_json(
-    light: &Illumination,
-    spectrum: Option<&Spectrum>,
-    nodes: usize,
-) -> (Value, Value) {
-    (
-        json!({
-            "sun_zenith_deg": num(light.theta_i().to_degrees()),
-            "sun_azimuth_deg": num(light.phi_i().to_degrees()),
-            "stokes_normalized": light.stokes().0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
-        }),
-        spectrum_json(spectrum, nodes),
-    )
 }

@@ -1,14 +1,43 @@
 //! The `best.json` document of a contrast study, built once here for every adapter (the CLI
 //! writes it; Python can return the same dictionary).
 
-use crate::contrast::{collimated_json, num, row, ContrastStudy, NullLoci, Setting, COLUMNS};
+use crate::contrast::{row, ContrastStudy, NullLoci, Setting, COLUMNS};
 use crate::hemisphere::deg;
 use crate::spectrum::spectrum_json;
-use polbrdf::analysis::contrast::ContrastSample;
+use polbrdf::analysis::contrast::{ContrastSample, Illumination};
 use polbrdf::analysis::SkyModel;
 use polbrdf::Spectrum;
 use polbrdf_io::Scene;
 use serde_json::{json, Value};
+
+impl ContrastStudy {
+    /// The `best.json` document (described in the README): the best direction and the listed
+    /// ones, the ranking, materials, grid, and the source or the scene with its null loci.
+    pub fn best_json(&self) -> Value {
+        best_json(self)
+    }
+}
+
+/// A number for JSON: `null` when not finite (e.g. an infinite intensity ratio).
+fn num(v: f64) -> Value {
+    serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
+}
+
+/// The source and the spectrum of a collimated study.
+fn collimated_json(
+    light: &Illumination,
+    spectrum: Option<&Spectrum>,
+    nodes: usize,
+) -> (Value, Value) {
+    (
+        json!({
+            "sun_zenith_deg": num(light.theta_i().to_degrees()),
+            "sun_azimuth_deg": num(light.phi_i().to_degrees()),
+            "stokes_normalized": light.stokes().0.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+        }),
+        spectrum_json(spectrum, nodes),
+    )
+}
 
 /// One direction: the values of [`COLUMNS`] by name.
 fn entry(s: &ContrastSample) -> Value {
@@ -20,7 +49,7 @@ fn entry(s: &ContrastSample) -> Value {
 }
 
 /// The document (see [`ContrastStudy::best_json`]).
-pub(crate) fn best_json(study: &ContrastStudy) -> Value {
+fn best_json(study: &ContrastStudy) -> Value {
     // As `Contrast::is_azimuth_independent`: a scene without a sun, under a sky that is the
     // same at every azimuth.
     let azimuth_independent =
