@@ -19,8 +19,9 @@
 //!
 //! One module per concern: [`errors`] (exceptions), [`material`] (the `Material` class),
 //! [`buffers`] (flat arrays in, output arrays out), [`evaluation`] (the pBRDF kernels),
-//! [`thermal`] (Planck, emissivity), [`scene`] (the observed radiance), [`fit`] (fitting); this
-//! file only registers what they define.
+//! [`thermal`] (Planck, emissivity), [`scene`] (the observed radiance, scene files), [`fit`]
+//! (fitting), [`vocabulary`] (the closed sets of names and the defaults, from their Rust
+//! sources); this file only registers what they define.
 
 mod buffers;
 mod errors;
@@ -29,6 +30,7 @@ mod fit;
 mod material;
 mod scene;
 mod thermal;
+mod vocabulary;
 
 use pyo3::prelude::*;
 
@@ -36,6 +38,7 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<material::PyMaterial>()?;
+    m.add_function(wrap_pyfunction!(material::_material_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(fit::_fit_result_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(evaluation::mueller_flat, m)?)?;
     m.add_function(wrap_pyfunction!(evaluation::mueller_directions_flat, m)?)?;
@@ -47,6 +50,13 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(thermal::brightness_temperature_flat, m)?)?;
     m.add_function(wrap_pyfunction!(thermal::emissivity_flat, m)?)?;
     m.add_function(wrap_pyfunction!(scene::radiance_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::radiance_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::read_scene_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(vocabulary::vocabulary, m)?)?;
+    m.add(
+        "DEFAULT_DOP_MAX",
+        polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,
+    )?;
     m.add_class::<fit::PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit::fit_flat, m)?)?;
     Ok(())

@@ -2,12 +2,12 @@
 
 use crate::errors::core_err;
 use crate::errors::io_err;
-use crate::errors::os_err;
 use polbrdf::model::KeyValue;
+use polbrdf::optics::dispersion::{Dispersion, SpectralIndex};
 use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 
 /// The material-file keys (the core's list) in the order of the constructor's keyword
@@ -69,13 +69,135 @@ pub(crate) fn build(py: Python<'_>, spec: &MaterialSpec) -> PyResult<PyMaterial>
     .map_err(|e| core_err(py, &e))
 }
 
-/// 1-based line of byte offset `pos` in `bytes`.
-pub(crate) fn line_of(bytes: &[u8], pos: usize) -> usize {
-    bytes[..pos.min(bytes.len())]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
+/// A material key's value in a pickled state (`bool` before `float`: Python's `True` is an
+/// `int`).
+#[derive(FromPyObject, IntoPyObject)]
+pub(crate) enum StateValue {
+    Bool(bool),
+    Number(f64),
+    Text(String),
+}
+
+/// A dispersion of a pickled spectral index: `("table", wavelengths, values, kind 0, no
+/// range)` or `("formula", coefficients, [], kind, range)`.
+type DispersionState = (String, Vec<f64>, Vec<f64>, u8, (f64, f64));
+
+/// A spectral index in a pickled state: source, name, references, comments, n, k.
+type SpectralState = (
+    String,
+    String,
+    String,
+    String,
+    DispersionState,
+    Option<DispersionState>,
+);
+
+/// A [`PyMaterial`] as plain values: its keys but `index` (the core's `entries`), and its
+/// spectral index's data.
+pub(crate) type MaterialState = (Vec<(String, StateValue)>, Option<SpectralState>);
+
+fn dispersion_state(d: &Dispersion) -> DispersionState {
+    match d {
+        Dispersion::Table {
+            wavelengths,
+            values,
+        } => (
+            "table".into(),
+            wavelengths.clone(),
+            values.clone(),
+            0,
+            (0.0, 0.0),
+        ),
+        Dispersion::Formula {
+            kind,
+            coefficients,
+            range,
+        } => (
+            "formula".into(),
+            coefficients.clone(),
+            Vec::new(),
+            *kind,
+            *range,
+        ),
+    }
+}
+
+fn dispersion(state: DispersionState) -> PyResult<Dispersion> {
+    match state {
+        (t, wavelengths, values, _, _) if t == "table" => Ok(Dispersion::Table {
+            wavelengths,
+            values,
+        }),
+        (t, coefficients, _, kind, range) if t == "formula" => Ok(Dispersion::Formula {
+            kind,
+            coefficients,
+            range,
+        }),
+        (t, ..) => Err(PyValueError::new_err(format!(
+            "a pickled Material's dispersion is \"table\" or \"formula\", not {t:?}"
+        ))),
+    }
+}
+
+/// The pickled state of `spec` ([`MaterialState`]).
+pub(crate) fn material_state(spec: &MaterialSpec) -> MaterialState {
+    let keys = spec
+        .entries()
+        .into_iter()
+        .filter(|(k, _)| *k != "index")
+        .map(|(k, v)| {
+            let v = match v {
+                KeyValue::Number(x) => StateValue::Number(x),
+                KeyValue::Text(t) => StateValue::Text(t),
+                KeyValue::Bool(b) => StateValue::Bool(b),
+            };
+            (k.to_string(), v)
+        })
+        .collect();
+    let spectral = spec.spectral.as_ref().map(|s| {
+        let i = &s.index;
+        (
+            s.source.clone(),
+            i.name.clone(),
+            i.references.clone(),
+            i.comments.clone(),
+            dispersion_state(&i.n),
+            i.k.as_ref().map(dispersion_state),
+        )
+    });
+    (keys, spectral)
+}
+
+/// The inverse of `Material.__reduce__`: the keys set as a material file's are
+/// (`MaterialSpec::set`), the spectral index from its data.
+#[pyfunction]
+pub(crate) fn _material_from_state(py: Python<'_>, state: MaterialState) -> PyResult<PyMaterial> {
+    let (keys, spectral) = state;
+    let mut spec = MaterialSpec::new(f64::NAN, f64::NAN);
+    spec.sigma_deg = None;
+    for (key, value) in keys {
+        let value = match value {
+            StateValue::Bool(b) => KeyValue::Bool(b),
+            StateValue::Number(x) => KeyValue::Number(x),
+            StateValue::Text(t) => KeyValue::Text(t),
+        };
+        spec.set(&key, value)
+            .map_err(|m| PyValueError::new_err(format!("a pickled Material's `{key}`: {m}")))?;
+    }
+    if let Some((source, name, references, comments, n, k)) = spectral {
+        let index = SpectralIndex {
+            name,
+            n: dispersion(n)?,
+            k: k.map(dispersion).transpose()?,
+            references,
+            comments,
+        };
+        spec.spectral = Some(polbrdf::model::SpectralSource {
+            source,
+            index: std::sync::Arc::new(index),
+        });
+    }
+    build(py, &spec)
 }
 
 /// Python literal of a float (shortest round-trip form, as `repr(float)` gives).
@@ -98,9 +220,9 @@ pub(crate) fn py_float(x: f64) -> String {
 impl PyMaterial {
     #[new]
     #[pyo3(signature = (
-        n = None, k = None, sigma_deg = None, b = None, a = None, form = "standard",
-        shadowing = true, tau_deg = 15.0, omega_deg = 40.0, azimuth_term = "none", rho_d = 0.0,
-        rho_v = 0.0, name = None, index = None
+        n = None, k = None, sigma_deg = None, b = None, a = None, form = None,
+        shadowing = None, tau_deg = None, omega_deg = None, azimuth_term = None, rho_d = None,
+        rho_v = None, name = None, index = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -110,16 +232,18 @@ impl PyMaterial {
         sigma_deg: Option<f64>,
         b: Option<f64>,
         a: Option<f64>,
-        form: &str,
-        shadowing: bool,
-        tau_deg: f64,
-        omega_deg: f64,
-        azimuth_term: &str,
-        rho_d: f64,
-        rho_v: f64,
+        form: Option<&str>,
+        shadowing: Option<bool>,
+        tau_deg: Option<f64>,
+        omega_deg: Option<f64>,
+        azimuth_term: Option<&str>,
+        rho_d: Option<f64>,
+        rho_v: Option<f64>,
         name: Option<String>,
         index: Option<String>,
     ) -> PyResult<Self> {
+        // `None`: the core's default (written once, in `MaterialSpec::new`).
+        let d = MaterialSpec::new(f64::NAN, f64::NAN);
         let spectral = match (&index, n, k) {
             (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
                 return Err(PyValueError::new_err(
@@ -154,13 +278,13 @@ impl PyMaterial {
             sigma_deg,
             b,
             a,
-            form: parse_form(form)?,
-            shadowing,
-            tau_deg,
-            omega_deg,
-            azimuth_term: parse_azimuth(azimuth_term)?,
-            rho_d,
-            rho_v,
+            form: form.map_or(Ok(d.form), parse_form)?,
+            shadowing: shadowing.unwrap_or(d.shadowing),
+            tau_deg: tau_deg.unwrap_or(d.tau_deg),
+            omega_deg: omega_deg.unwrap_or(d.omega_deg),
+            azimuth_term: azimuth_term.map_or(Ok(d.azimuth_term), parse_azimuth)?,
+            rho_d: rho_d.unwrap_or(d.rho_d),
+            rho_v: rho_v.unwrap_or(d.rho_v),
             spectral,
         };
         build(py, &spec)
@@ -173,16 +297,14 @@ impl PyMaterial {
     /// ``OSError``) when the file cannot be read.
     #[staticmethod]
     fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
-        let bytes = std::fs::read(&path)
-            .map_err(|e| os_err(e.kind(), format!("{}: cannot read: {e}", path.display())))?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let line = line_of(e.as_bytes(), e.utf8_error().valid_up_to());
-            PyValueError::new_err(format!(
-                "{}:{line}: file is not valid UTF-8 text",
-                path.display()
-            ))
-        })?;
-        let spec = polbrdf_io::parse_material(&text, &path).map_err(|e| io_err(&e))?;
+        // polbrdf-io's reader (the CLI's): the same checks and messages. A file named `-` is
+        // a file here, not standard input.
+        let path = if path.as_os_str() == "-" {
+            Path::new(".").join("-")
+        } else {
+            path
+        };
+        let spec = polbrdf_io::read_material(&path).map_err(|e| io_err(&e))?;
         build(py, &spec)
     }
 
@@ -250,12 +372,14 @@ impl PyMaterial {
         Ok(d)
     }
 
-    /// Pickle support: rebuilt through the constructor from :meth:`to_dict`.
-    fn __getnewargs_ex__<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
-        Ok((PyTuple::empty(py), self.to_dict(py)?))
+    /// Pickle support, every protocol (0 to 5): the material's keys and, for a spectral index,
+    /// its data ([`MaterialState`]), rebuilt by `_material_from_state` without reading the file
+    /// or library entry the index names.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (MaterialState,))> {
+        let f = py
+            .import("polbrdf._polbrdf")?
+            .getattr("_material_from_state")?;
+        Ok((f, (material_state(self.inner.spec()),)))
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {

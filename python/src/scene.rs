@@ -2,17 +2,19 @@
 
 use crate::buffers::flat_pair;
 use crate::buffers::stokes_array;
-use crate::errors::core_err;
+use crate::errors::{core_err, io_err};
 use crate::material::PyMaterial;
 use crate::thermal::view_azimuth;
 use crate::thermal::view_zenith;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
-use polbrdf::analysis::sky::{TableSky, ZenithProfile};
+use polbrdf::analysis::sky::{ClearSky, TableSky, ZenithProfile};
 use polbrdf::{Band, Spectrum};
+use polbrdf_io::{SceneObject, SceneValue};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use std::collections::HashMap;
+use std::path::{Path, PathBuf};
 
 /// Most quadrature pieces a band may be split into (`band_step_um` against the band's width):
 /// every spectral node costs an emissivity quadrature, and a vanishing step would not end.
@@ -70,16 +72,13 @@ pub(crate) fn radiance_spectrum(
     }
 }
 
-/// The default δ_max of the `cie-clear` sky (the Python signature's `dop_max=0.75`).
-pub(crate) const DEFAULT_DOP_MAX: f64 = 0.75;
-
 /// The sky arguments of [`radiance_flat`], as handed over by the Python layer.
 pub(crate) struct SkyArgs<'py> {
     radiance: Option<f64>,
     temperature_k: Option<f64>,
     profile: Table<'py>,
     irradiance: Option<f64>,
-    dop_max: f64,
+    dop_max: Option<f64>,
     table: SkyTable<'py>,
 }
 
@@ -99,11 +98,7 @@ pub(crate) fn radiance_sky(sky: &str, args: SkyArgs<'_>, has_sun: bool) -> PyRes
         ("sky_temperature_k", args.temperature_k.is_some()),
         ("sky_profile", args.profile.is_some()),
         ("sky_irradiance", args.irradiance.is_some()),
-        // A default value cannot be told from no value: only another one "is given".
-        (
-            "dop_max",
-            args.dop_max.to_bits() != DEFAULT_DOP_MAX.to_bits(),
-        ),
+        ("dop_max", args.dop_max.is_some()),
         ("sky_table", args.table.is_some()),
     ];
     // The arguments the model needs, those it may take, and how to say so.
@@ -127,10 +122,13 @@ pub(crate) fn radiance_sky(sky: &str, args: SkyArgs<'_>, has_sun: bool) -> PyRes
             "`sky_table` = (theta_deg, phi_deg, stokes)",
         ),
         other => {
+            let known: Vec<String> = polbrdf_io::scene::sky_model_names()
+                .map(|m| format!("\"{m}\""))
+                .collect();
             return Err(PyValueError::new_err(format!(
-                "invalid `sky`: unknown sky model `{other}` (expected \"none\", \"uniform\", \
-                 \"thermal\", \"profile\", \"cie-clear\" or \"table\")"
-            )))
+                "invalid `sky`: unknown sky model `{other}` (expected {})",
+                known.join(", ")
+            )));
         }
     };
     for (name, is_given) in given {
@@ -168,7 +166,7 @@ pub(crate) fn radiance_sky(sky: &str, args: SkyArgs<'_>, has_sun: bool) -> PyRes
         }
         "cie-clear" => SkyModel::ClearSky {
             irradiance: args.irradiance.expect("checked above"),
-            dop_max: args.dop_max,
+            dop_max: args.dop_max.unwrap_or(ClearSky::DEFAULT_DOP_MAX),
         },
         _ => SkyModel::Table(sky_table(args.table.expect("checked above"))?),
     })
@@ -302,9 +300,9 @@ pub(crate) fn table(t: Table<'_>) -> Option<(Vec<f64>, Vec<f64>)> {
 #[pyfunction]
 #[pyo3(signature = (
     material, theta_r, phi_r, degrees, wavelength_um=None, band=None, band_step_um=None,
-    temperature_k=None, sky="none", sky_radiance=None, sky_temperature_k=None, sky_profile=None,
-    transmittance=1.0, path_radiance=0.0, sun=None, sky_irradiance=None,
-    dop_max=DEFAULT_DOP_MAX, sky_table=None
+    temperature_k=None, sky=None, sky_radiance=None, sky_temperature_k=None, sky_profile=None,
+    transmittance=None, path_radiance=None, sun=None, sky_irradiance=None, dop_max=None,
+    sky_table=None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn radiance_flat<'py>(
@@ -317,21 +315,26 @@ pub(crate) fn radiance_flat<'py>(
     band: Table<'py>,
     band_step_um: Option<f64>,
     temperature_k: Option<f64>,
-    sky: &str,
+    sky: Option<&str>,
     sky_radiance: Option<f64>,
     sky_temperature_k: Option<f64>,
     sky_profile: Table<'py>,
-    transmittance: f64,
-    path_radiance: f64,
+    transmittance: Option<f64>,
+    path_radiance: Option<f64>,
     sun: Option<(f64, f64, f64, [f64; 4])>,
     sky_irradiance: Option<f64>,
-    dop_max: f64,
+    dop_max: Option<f64>,
     sky_table: SkyTable<'py>,
 ) -> PyResult<Observed<'py>> {
     let (t, p) = flat_pair(&theta_r, &phi_r, ["theta_r", "phi_r"])?;
-    let n = t.len();
     let spectrum = radiance_spectrum(wavelength_um, table(band), band_step_um)?;
     let sun = radiance_sun(sun, degrees)?;
+    // `None`: the scene files' default model (the first of their list).
+    let sky = sky.unwrap_or_else(|| {
+        polbrdf_io::scene::sky_model_names()
+            .next()
+            .expect("the scene format has sky models")
+    });
     let sky_args = SkyArgs {
         radiance: sky_radiance,
         temperature_k: sky_temperature_k,
@@ -343,9 +346,10 @@ pub(crate) fn radiance_flat<'py>(
     let scene = ThermalScene {
         surface_temperature_k: temperature_k,
         sky: radiance_sky(sky, sky_args, sun.is_some())?,
+        // `None`: the core's defaults (written once, in `Atmosphere::default`).
         atmosphere: Atmosphere {
-            transmittance,
-            path_radiance,
+            transmittance: transmittance.unwrap_or(Atmosphere::default().transmittance),
+            path_radiance: path_radiance.unwrap_or(Atmosphere::default().path_radiance),
         },
         sun,
     };
@@ -375,6 +379,21 @@ pub(crate) fn radiance_flat<'py>(
         }
         other => core_err(py, &other),
     })?;
+    observe(py, material, &scene, &spectrum, (t, p), degrees)
+}
+
+/// The observed radiance of `material` in `scene` over `spectrum` at the views `(t, p)`
+/// (degrees when `degrees`, else radians), as the arrays of [`radiance_flat`]; the core's
+/// `observed_radiance`, which `polbrdf radiance` runs too.
+fn observe<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    scene: &ThermalScene,
+    spectrum: &Spectrum,
+    (t, p): (&[f64], &[f64]),
+    degrees: bool,
+) -> PyResult<Observed<'py>> {
+    let n = t.len();
     // The views in radians, checked in order; each distinct one evaluated once.
     let mut seen: HashMap<(u64, u64), usize> = HashMap::new();
     let mut views: Vec<(f64, f64)> = Vec::new();
@@ -394,7 +413,7 @@ pub(crate) fn radiance_flat<'py>(
     }
     let spec = material.inner.spec();
     let r = py
-        .detach(|| observed_radiance(spec, &scene, &spectrum, &views))
+        .detach(|| observed_radiance(spec, scene, spectrum, &views))
         .map_err(|e| core_err(py, &e))?;
     let at = |k: &usize| &r[*k];
     let to_unit = |a: f64| if degrees { a.to_degrees() } else { a };
@@ -408,4 +427,74 @@ pub(crate) fn radiance_flat<'py>(
             slot.iter().map(|k| to_unit(at(k).stokes.aolp())).collect(),
         ),
     ))
+}
+
+/// A value of [`read_scene_keys`]: a number, an array of numbers or a string.
+#[derive(IntoPyObject)]
+pub(crate) enum KeyValue {
+    Number(f64),
+    Numbers(Vec<f64>),
+    Text(String),
+}
+
+/// Reads a scene file with `polbrdf-io`'s reader (the CLI's: every check, the same errors) and
+/// returns the keys it gives, `[(dotted name, value)]`, tables left out, file names joined to
+/// the scene file's folder (`polbrdf_io::read_scene_keys`).
+#[pyfunction]
+pub(crate) fn read_scene_keys(path: PathBuf) -> PyResult<Vec<(&'static str, KeyValue)>> {
+    // A file named `-` is a file here, not standard input.
+    let path = if path.as_os_str() == "-" {
+        Path::new(".").join("-")
+    } else {
+        path
+    };
+    let (_, keys) = polbrdf_io::read_scene_keys(&path).map_err(|e| io_err(&e))?;
+    Ok(keys
+        .into_iter()
+        .map(|(k, v)| {
+            let v = match v {
+                SceneValue::Number(x) => KeyValue::Number(x),
+                SceneValue::Numbers(x) => KeyValue::Numbers(x),
+                SceneValue::Text(s) => KeyValue::Text(s),
+            };
+            (k, v)
+        })
+        .collect())
+}
+
+/// The observed radiance of `material` in the scene of the scene-file text `text` (read by
+/// `polbrdf-io`'s reader, as `polbrdf radiance` reads its `--scene`; `source` names it in
+/// messages, relative file names are taken relative to the working directory) at the views
+/// `(theta_r, phi_r)`, as the arrays of [`radiance_flat`]. A scene with a `[target]` or a
+/// `[background]` (for `polbrdf contrast`) is refused: the surface here is `material`, at the
+/// `[surface]` temperature.
+#[pyfunction]
+pub(crate) fn radiance_scene<'py>(
+    py: Python<'py>,
+    material: &PyMaterial,
+    text: &str,
+    source: &str,
+    theta_r: PyReadonlyArray1<'py, f64>,
+    phi_r: PyReadonlyArray1<'py, f64>,
+    degrees: bool,
+) -> PyResult<Observed<'py>> {
+    let scene = polbrdf_io::parse_scene(text, Path::new(source)).map_err(|e| io_err(&e))?;
+    for (table, object) in [("target", &scene.target), ("background", &scene.background)] {
+        if *object != SceneObject::default() {
+            return Err(PyValueError::new_err(format!(
+                "{source}: the scene has a [{table}] table, which is for `contrast`: radiance \
+                 observes `material` at the [surface] temperature (give `surface`, not \
+                 `{table}`)"
+            )));
+        }
+    }
+    let (t, p) = flat_pair(&theta_r, &phi_r, ["theta_r", "phi_r"])?;
+    observe(
+        py,
+        material,
+        &scene.thermal,
+        &scene.spectrum,
+        (t, p),
+        degrees,
+    )
 }
