@@ -382,7 +382,8 @@ def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) 
         except TypeError:
             dtype = None
         if dtype not in (np.float64, np.float32):
-            raise ValueError(f'unknown precision {precision!r}: expected "float64" or "float32"')
+            names = " or ".join(f'"{p}"' for p in _polbrdf.vocabulary()["precision"])
+            raise ValueError(f"unknown precision {precision!r}: expected {names}")
     if dtype not in (np.float64, np.float32):
         raise ValueError(f"`out` must have dtype float64 or float32, got {dtype}")
     if out is not None and out.dtype != dtype:
@@ -1078,9 +1079,10 @@ def radiance(
     ValueError
         For a view angle NaN/inf or a zenith outside [0°, 90°) (naming the argument, the value
         and the flat index); both or neither of ``wavelength_um`` and ``band``; a sky argument
-        missing for its model or given to another model; an unknown sky model; ``sky="cie-clear"`` without a ``sun``; a sun at or below
-        the horizon, a negative irradiance, a Stokes vector with ``s0 ≤ 0``, of a degree of
-        polarization above 1 or not of length 4; an invalid temperature, radiance,
+        missing for its model or given to another model; an unknown sky model;
+        ``sky="cie-clear"`` without a ``sun``; a sun at or below the horizon, a negative
+        irradiance, a Stokes vector with ``s0 ≤ 0``, of a degree of polarization above 1 or not
+        of length 4; an invalid temperature, radiance,
         transmittance, band, profile, ``dop_max`` or sky table (naming the argument, and for a
         table the offending entry); a wavelength outside a spectral index's data; the
         ``paper`` form (the core's message).
