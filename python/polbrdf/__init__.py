@@ -39,14 +39,14 @@ the first call to change it.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 try:
     from . import _polbrdf
-    from ._polbrdf import FitResult, Material
+    from ._polbrdf import DEFAULT_DOP_MAX, FitResult, Material
 except ImportError as _e:  # pragma: no cover - only when the extension was never built
     raise ImportError(
         "polbrdf's compiled extension (polbrdf._polbrdf) is missing. Install the package with "
@@ -54,12 +54,22 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
         "source folder python/polbrdf instead of the installed package (run from elsewhere)."
     ) from _e
 
+from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
+
 __all__ = [
+    "DEFAULT_DOP_MAX",
+    "Atmosphere",
+    "Band",
     "Emissivity",
     "Evaluation",
     "FitResult",
     "Material",
     "Radiance",
+    "Scene",
+    "SceneObject",
+    "Sky",
+    "Sun",
+    "Surface",
     "__version__",
     "brdf",
     "brightness_temperature",
@@ -372,7 +382,8 @@ def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) 
         except TypeError:
             dtype = None
         if dtype not in (np.float64, np.float32):
-            raise ValueError(f'unknown precision {precision!r}: expected "float64" or "float32"')
+            names = " or ".join(f'"{p}"' for p in _polbrdf.vocabulary()["precision"])
+            raise ValueError(f"unknown precision {precision!r}: expected {names}")
     if dtype not in (np.float64, np.float32):
         raise ValueError(f"`out` must have dtype float64 or float32, got {dtype}")
     if out is not None and out.dtype != dtype:
@@ -382,9 +393,10 @@ def _precision(precision: str | type | np.dtype | None, out: np.ndarray | None) 
 
 def _planar(layout: str) -> bool:
     """Whether ``layout`` is ``"planar"`` (else ``"interleaved"``)."""
-    if layout not in ("interleaved", "planar"):
-        raise ValueError(f"unknown layout {layout!r}: expected \"interleaved\" or \"planar\"")
-    return layout == "planar"
+    interleaved, planar = _polbrdf.vocabulary()["layout"]
+    if layout not in (interleaved, planar):
+        raise ValueError(f'unknown layout {layout!r}: expected "{interleaved}" or "{planar}"')
+    return layout == planar
 
 
 def _matrix_shape(shape: tuple[int, ...], planar: bool) -> tuple[int, ...]:
@@ -910,6 +922,15 @@ def _sky_table(
     )
 
 
+@overload
+def radiance(
+    material: Material,
+    theta_r: Scene,
+    phi_r: tuple[ArrayLike, ArrayLike],
+    *,
+    degrees: bool = True,
+) -> Radiance: ...
+@overload
 def radiance(
     material: Material,
     theta_r: ArrayLike,
@@ -920,20 +941,50 @@ def radiance(
     band: tuple[ArrayLike, ArrayLike] | None = None,
     band_step_um: float | None = None,
     temperature_k: float | None = None,
-    sky: str = "none",
+    sky: str | None = None,
     sky_radiance: float | None = None,
     sky_temperature_k: float | None = None,
     sky_profile: tuple[ArrayLike, ArrayLike] | None = None,
-    transmittance: float = 1.0,
-    path_radiance: float = 0.0,
+    transmittance: float | None = None,
+    path_radiance: float | None = None,
     sun: tuple[float, float, float] | tuple[float, float, float, ArrayLike] | None = None,
     sky_irradiance: float | None = None,
-    dop_max: float = 0.75,
+    dop_max: float | None = None,
+    sky_table: tuple[ArrayLike, ArrayLike, ArrayLike] | None = None,
+) -> Radiance: ...
+def radiance(
+    material: Material,
+    theta_r: ArrayLike | Scene,
+    phi_r: ArrayLike | tuple[ArrayLike, ArrayLike],
+    *,
+    degrees: bool = True,
+    wavelength_um: float | None = None,
+    band: tuple[ArrayLike, ArrayLike] | None = None,
+    band_step_um: float | None = None,
+    temperature_k: float | None = None,
+    sky: str | None = None,
+    sky_radiance: float | None = None,
+    sky_temperature_k: float | None = None,
+    sky_profile: tuple[ArrayLike, ArrayLike] | None = None,
+    transmittance: float | None = None,
+    path_radiance: float | None = None,
+    sun: tuple[float, float, float] | tuple[float, float, float, ArrayLike] | None = None,
+    sky_irradiance: float | None = None,
+    dop_max: float | None = None,
     sky_table: tuple[ArrayLike, ArrayLike, ArrayLike] | None = None,
 ) -> Radiance:
     """The observed Stokes radiance of a surface in a scene: its own polarized emission, the
     sun and the sky it reflects, and the atmosphere between it and the sensor (the core's
     ``analysis::scene::observed_radiance``), vectorized over the views.
+
+    Two forms. ``radiance(material, scene, (theta_r, phi_r))`` takes a :class:`Scene` (a scene
+    file's keys, e.g. ``Scene.from_toml("scene.toml")``), read by the CLI's reader: the same
+    numbers as ``polbrdf radiance --scene`` bit for bit, at the ``[surface]`` temperature (a
+    scene with a ``[target]`` or ``[background]`` is refused: those are for ``contrast``).
+    ``radiance(material, theta_r, phi_r, **keywords)`` takes the scene as the keywords below,
+    which also take a band, a sky profile or a sky table as arrays rather than files; a keyword
+    left at ``None`` takes the scene files' default. Both forms give identical numbers for the
+    same scene.
 
     ``S(w_r) = B_λ(λ, T)·ε(w_r) + E·cosθs·F(w_s, w_r)·s + ∫_H F(w, w_r)·L_sky(w) cosθ dω`` and
     at the sensor ``S_sensor = τ·S + L_path·(1, 0, 0, 0)``, with ``F`` the pBRDF
@@ -972,8 +1023,8 @@ def radiance(
         tabulated wavelengths of a spectral index are panel edges as well). Only with ``band``.
     temperature_k : float, optional
         Surface temperature in K (> 0); ``None``: no thermal emission.
-    sky : str
-        ``"none"`` (nothing to reflect), ``"uniform"`` (an unpolarized sky of radiance
+    sky : str, optional
+        ``"none"`` (the default: nothing to reflect), ``"uniform"`` (an unpolarized sky of radiance
         ``sky_radiance`` everywhere), ``"thermal"`` (a uniform sky radiating as a blackbody at
         ``sky_temperature_k``), ``"profile"`` (``sky_profile``, depending on the zenith angle),
         ``"cie-clear"`` (the CIE standard clear sky, type 12, with Rayleigh polarization, for
@@ -987,9 +1038,10 @@ def radiance(
         For ``sky="profile"`` only: 1-D arrays, zenith angles in degrees strictly increasing
         from 0 to 90, spectral radiance (≥ 0, W·m⁻²·sr⁻¹·µm⁻¹) at each, linear between them;
         an unpolarized sky independent of azimuth.
-    transmittance : float
-        Atmospheric transmittance τ in [0, 1] between surface and sensor (default 1).
-    path_radiance : float
+    transmittance : float, optional
+        Atmospheric transmittance τ in [0, 1] between surface and sensor (default 1, the
+        scene files' default).
+    path_radiance : float, optional
         Unpolarized path radiance added at the sensor, W·m⁻²·sr⁻¹·µm⁻¹ (≥ 0, default 0).
     sun : (zenith, azimuth, irradiance) or (zenith, azimuth, irradiance, stokes), optional
         A collimated source in the direction ``(zenith, azimuth)`` (toward the sun; in the
@@ -1003,9 +1055,9 @@ def radiance(
     sky_irradiance : float, optional
         For ``sky="cie-clear"`` only (and required there): the sky's horizontal spectral
         irradiance ``∫_H L_sky cosθ dω`` in W·m⁻²·µm⁻¹ (≥ 0), the sun's beam excluded.
-    dop_max : float
+    dop_max : float, optional
         For ``sky="cie-clear"`` only: the Rayleigh maximum degree of polarization δ_max in
-        [0, 1], reached 90° from the sun (default 0.75); the sky's DoLP is
+        [0, 1], reached 90° from the sun (default :data:`DEFAULT_DOP_MAX`); the sky's DoLP is
         ``δ_max·sin²γ/(1 + cos²γ)`` at angle γ from the sun, its E-vector normal to the plane
         of sun, sky point and surface.
     sky_table : (theta_deg, phi_deg, stokes), optional
@@ -1027,20 +1079,35 @@ def radiance(
     ValueError
         For a view angle NaN/inf or a zenith outside [0°, 90°) (naming the argument, the value
         and the flat index); both or neither of ``wavelength_um`` and ``band``; a sky argument
-        missing for its model or given to another model (``dop_max`` other than 0.75 counts as
-        given); an unknown sky model; ``sky="cie-clear"`` without a ``sun``; a sun at or below
-        the horizon, a negative irradiance, a Stokes vector with ``s0 ≤ 0``, of a degree of
-        polarization above 1 or not of length 4; an invalid temperature, radiance,
+        missing for its model or given to another model; an unknown sky model;
+        ``sky="cie-clear"`` without a ``sun``; a sun at or below the horizon, a negative
+        irradiance, a Stokes vector with ``s0 ≤ 0``, of a degree of polarization above 1 or not
+        of length 4; an invalid temperature, radiance,
         transmittance, band, profile, ``dop_max`` or sky table (naming the argument, and for a
         table the offending entry); a wavelength outside a spectral index's data; the
         ``paper`` form (the core's message).
     TypeError
         For a non-Material ``material``, non-real arguments, or a ``sun`` / ``sky_table`` that
-        is not a tuple of 3–4 / 3 entries.
+        is not a tuple of 3–4 / 3 entries; a scene with a flat keyword, or ``views`` that are
+        not a pair ``(theta_r, phi_r)``.
     """
     _check_material(material)
+    flat_keywords = {
+        "wavelength_um": wavelength_um, "band": band, "band_step_um": band_step_um,
+        "temperature_k": temperature_k, "sky": sky, "sky_radiance": sky_radiance,
+        "sky_temperature_k": sky_temperature_k, "sky_profile": sky_profile,
+        "transmittance": transmittance, "path_radiance": path_radiance, "sun": sun,
+        "sky_irradiance": sky_irradiance, "dop_max": dop_max, "sky_table": sky_table,
+    }  # fmt: skip
+    if isinstance(theta_r, Scene):
+        given = [k for k, v in flat_keywords.items() if v is not None]
+        if given:
+            raise TypeError(
+                f"radiance(material, scene, views) takes the scene's own keys, not `{given[0]}`"
+            )
+        return _radiance_of_scene(material, theta_r, phi_r, degrees)
     shape, flat = _broadcast(("theta_r", "phi_r"), (theta_r, phi_r))
-    if not isinstance(sky, str):
+    if sky is not None and not isinstance(sky, str):
         raise TypeError(f"`sky` must be a string, not {type(sky).__name__}")
     kwargs = {
         "wavelength_um": _scalar(
@@ -1063,9 +1130,33 @@ def radiance(
         "sky_table": _sky_table(sky_table),
     }
     try:
-        s, em, re, d, a = _polbrdf.radiance_flat(material, flat[0], flat[1], degrees, **kwargs)
+        arrays = _polbrdf.radiance_flat(material, flat[0], flat[1], degrees, **kwargs)
     except ValueError as e:
         raise _located(e, shape) from None
+    return _radiance_result(arrays, shape)
+
+
+def _radiance_of_scene(
+    material: Material, scene: Scene, views: object, degrees: bool
+) -> Radiance:
+    """:func:`radiance` of a :class:`Scene` at ``views = (theta_r, phi_r)``."""
+    if isinstance(views, (str, bytes)) or not isinstance(views, Sequence) or len(views) != 2:
+        raise TypeError("`views` must be a pair (theta_r, phi_r) of array_likes")
+    shape, flat = _broadcast(("theta_r", "phi_r"), (views[0], views[1]))
+    try:
+        arrays = _polbrdf.radiance_scene(
+            material, scene.to_toml(), "<polbrdf.Scene>", flat[0], flat[1], degrees
+        )
+    except ValueError as e:
+        raise _located(e, shape) from None
+    return _radiance_result(arrays, shape)
+
+
+def _radiance_result(
+    arrays: tuple[_F64, _F64, _F64, _F64, _F64], shape: tuple[int, ...]
+) -> Radiance:
+    """The arrays of ``radiance_flat`` / ``radiance_scene`` in the views' shape."""
+    s, em, re, d, a = arrays
     return Radiance(
         s.reshape(shape + (4,)),
         em.reshape(shape + (4,)),

@@ -1,16 +1,41 @@
 """Type stubs of the compiled module ``polbrdf._polbrdf`` (use it through ``polbrdf``)."""
 
 from os import PathLike
-from typing import Any, final
+from typing import Any, Literal, TypeAlias, final
 
 import numpy as np
 from numpy.typing import NDArray
 
+# The closed sets of names, spelled as the Rust enums spell them (`vocabulary()` returns those;
+# python/tests/test_typing.py checks that every Literal here is exactly one of its sets).
+_Form: TypeAlias = Literal["standard", "paper"]
+_AzimuthTerm: TypeAlias = Literal["none", "eq3"]
+_Precision: TypeAlias = Literal["float64", "float32"]
+_SkyModel: TypeAlias = Literal["none", "uniform", "thermal", "profile", "cie-clear", "table"]
+_Parameter: TypeAlias = Literal[
+    "n", "k", "sigma_deg", "b", "a", "tau_deg", "omega_deg", "rho_d", "rho_v"
+]
+_Quantity: TypeAlias = Literal[
+    "brdf", "dolp", "brdf_s", "brdf_p",
+    "m00", "m01", "m02", "m03", "m10", "m11", "m12", "m13",
+    "m20", "m21", "m22", "m23", "m30", "m31", "m32", "m33",
+]  # fmt: skip
+_VocabularySet: TypeAlias = Literal[
+    "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key"
+]
+
+DEFAULT_DOP_MAX: float
+"""The clear sky's default maximum degree of polarization δ_max (the core's)."""
+
 __all__ = [
+    "DEFAULT_DOP_MAX",
     "FitResult",
     "Material",
+    "_fit_result_from_state",
+    "_material_from_state",
     "brdf_dolp_flat",
     "brightness_temperature_flat",
+    "derivative_step",
     "emissivity_flat",
     "evaluate_flat",
     "fit_flat",
@@ -19,6 +44,9 @@ __all__ = [
     "mueller_flat",
     "planck_flat",
     "radiance_flat",
+    "radiance_scene",
+    "read_scene_keys",
+    "vocabulary",
 ]
 
 @final
@@ -40,13 +68,13 @@ class Material:
         sigma_deg: float | None = None,
         b: float | None = None,
         a: float | None = None,
-        form: str = "standard",
-        shadowing: bool = True,
-        tau_deg: float = 15.0,
-        omega_deg: float = 40.0,
-        azimuth_term: str = "none",
-        rho_d: float = 0.0,
-        rho_v: float = 0.0,
+        form: _Form | None = None,
+        shadowing: bool | None = None,
+        tau_deg: float | None = None,
+        omega_deg: float | None = None,
+        azimuth_term: _AzimuthTerm | None = None,
+        rho_d: float | None = None,
+        rho_v: float | None = None,
         name: str | None = None,
         index: str | None = None,
     ) -> Material: ...
@@ -70,7 +98,8 @@ class Material:
         """The material as material-file text."""
     def to_dict(self) -> dict[str, Any]:
         """The material's keys (``None`` for unset optional ones), for ``Material(**d)``."""
-    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]: ...
+    def __reduce__(self) -> tuple[Any, tuple[Any]]:
+        """Pickle support at every protocol: the keys and a spectral index's data."""
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
     @property
@@ -98,7 +127,7 @@ class Material:
     def a(self) -> float | None:
         """Amplitude a of D in sr⁻¹ as given, or None (see ``a_effective``)."""
     @property
-    def form(self) -> str:
+    def form(self) -> _Form:
         """Either "standard" or "paper"."""
     @property
     def shadowing(self) -> bool:
@@ -110,7 +139,7 @@ class Material:
     def omega_deg(self) -> float:
         """Ω of eq. 3, degrees."""
     @property
-    def azimuth_term(self) -> str:
+    def azimuth_term(self) -> _AzimuthTerm:
         """Either "none" or "eq3"."""
     @property
     def rho_d(self) -> float:
@@ -137,7 +166,7 @@ def mueller_flat(
     degrees: bool,
     wavelength_um: NDArray[np.float64] | None = None,
     out: NDArray[np.floating] | None = None,
-    precision: str = "float64",
+    precision: _Precision = "float64",
     planar: bool = False,
 ) -> NDArray[np.floating]:
     """pBRDF (sr⁻¹) at n geometries of contiguous 1-D float64 angles, shape (n, 16) — (16, n)
@@ -150,7 +179,7 @@ def mueller_directions_flat(
     w_r: NDArray[np.float64],
     wavelength_um: NDArray[np.float64] | None = None,
     out: NDArray[np.floating] | None = None,
-    precision: str = "float64",
+    precision: _Precision = "float64",
     planar: bool = False,
 ) -> NDArray[np.floating]:
     """pBRDF (sr⁻¹) at n pairs of direction vectors, (n, 3) C-contiguous float64 arrays (or
@@ -226,15 +255,15 @@ def radiance_flat(
     band: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
     band_step_um: float | None = None,
     temperature_k: float | None = None,
-    sky: str = "none",
+    sky: _SkyModel | None = None,
     sky_radiance: float | None = None,
     sky_temperature_k: float | None = None,
     sky_profile: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
-    transmittance: float = 1.0,
-    path_radiance: float = 0.0,
+    transmittance: float | None = None,
+    path_radiance: float | None = None,
     sun: tuple[float, float, float, tuple[float, float, float, float]] | None = None,
     sky_irradiance: float | None = None,
-    dop_max: float = 0.75,
+    dop_max: float | None = None,
     sky_table: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
     | None = None,
 ) -> tuple[
@@ -247,11 +276,45 @@ def radiance_flat(
     """Observed Stokes radiance at n views: stokes, emitted, reflected (n, 4), dolp, aolp (n);
     W·m⁻²·sr⁻¹·µm⁻¹ at one wavelength, W·m⁻²·sr⁻¹ over a band. ``sun`` = (zenith, azimuth
     (unit of the views), irradiance W·m⁻²·µm⁻¹, stokes normalized here to s0 = 1);
-    ``sky_table`` = (theta_deg, phi_deg, stokes (n_theta·n_phi, 4), θ-major)."""
+    ``sky_table`` = (theta_deg, phi_deg, stokes (n_theta·n_phi, 4), θ-major); ``None``: the
+    scene files' default."""
 
+def radiance_scene(
+    material: Material,
+    text: str,
+    source: str,
+    theta_r: NDArray[np.float64],
+    phi_r: NDArray[np.float64],
+    degrees: bool,
+) -> tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+]:
+    """As ``radiance_flat`` for the scene of scene-file text ``text`` (read by polbrdf-io's
+    reader; ``source`` names it in messages); a [target] or [background] is refused."""
+
+def read_scene_keys(path: str | PathLike[str]) -> list[tuple[str, float | list[float] | str]]:
+    """The keys of a scene file read by polbrdf-io's reader, [(dotted name, value)], file
+    names joined to its folder."""
+
+def vocabulary() -> dict[_VocabularySet, list[str]]:
+    """Every closed set of names the module accepts, from the Rust enums."""
+
+def _material_from_state(state: tuple[Any, Any]) -> Material:
+    """The inverse of ``Material.__reduce__``."""
+
+def _fit_result_from_state(state: Any, m: Material) -> FitResult:
+    """The inverse of ``FitResult.__reduce__``."""
+
+@final
 class FitResult:
     """The outcome of :func:`polbrdf.fit`: fitted parameters with their uncertainties."""
 
+    def __reduce__(self) -> tuple[Any, tuple[Any, Material]]:
+        """Pickle support at every protocol: every field as plain values."""
     @property
     def names(self) -> list[str]:
         """Free parameters, in the order of every array."""
@@ -314,10 +377,10 @@ def fit_flat(
     phi_i: NDArray[np.float64],
     theta_r: NDArray[np.float64],
     phi_r: NDArray[np.float64],
-    names: list[str],
+    names: list[_Quantity],
     values: list[NDArray[np.float64]],
     sigmas: list[NDArray[np.float64] | None],
-    free: list[str],
+    free: list[_Parameter],
     degrees: bool,
     starts: int,
     seed: int,

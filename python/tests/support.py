@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
@@ -30,3 +31,22 @@ def material_of(inp: dict[str, Any]) -> polbrdf.Material:
         rho_d=inp["rho_D"],
         rho_v=inp["rho_V"],
     )
+
+
+def cli_binary() -> Path | None:
+    """The `polbrdf` CLI binary: $POLBRDF_CLI, else target/{debug,release}/polbrdf if built."""
+    env = os.environ.get("POLBRDF_CLI")
+    if env:
+        return Path(env)
+    for profile in ("debug", "release"):
+        p = REPO / "target" / profile / "polbrdf"
+        if p.is_file() and os.access(p, os.X_OK):
+            return p
+    return None
+
+
+#: Why a test that runs the CLI is skipped when there is no binary.
+NO_CLI = (
+    "the polbrdf CLI binary is not built (run `cargo build -p polbrdf-cli` in the repository "
+    "root, or set POLBRDF_CLI to its path)"
+)

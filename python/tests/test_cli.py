@@ -8,34 +8,17 @@ from __future__ import annotations
 
 import csv
 import io
-import os
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
-from support import REPO
+from support import NO_CLI, cli_binary
 
 import polbrdf
 
-
-def cli_binary() -> Path | None:
-    env = os.environ.get("POLBRDF_CLI")
-    if env:
-        return Path(env)
-    for profile in ("debug", "release"):
-        p = REPO / "target" / profile / "polbrdf"
-        if p.is_file() and os.access(p, os.X_OK):
-            return p
-    return None
-
-
 CLI = cli_binary()
-pytestmark = pytest.mark.skipif(
-    CLI is None,
-    reason="the polbrdf CLI binary is not built (run `cargo build -p polbrdf-cli` in the "
-    "repository root, or set POLBRDF_CLI to its path)",
-)
+pytestmark = pytest.mark.skipif(CLI is None, reason=NO_CLI)
 
 
 def geometries() -> np.ndarray:

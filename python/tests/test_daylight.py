@@ -415,7 +415,7 @@ def bad_node_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         ),
         (
             lambda: polbrdf.radiance(PAINT, 10, 0, sky="tabel", **AT10),
-            r"unknown sky model `tabel`.*\"cie-clear\" or \"table\"",
+            r"unknown sky model `tabel` \(expected \"none\", .*\"cie-clear\", \"table\"\)",
         ),
         (
             lambda: polbrdf.radiance(

@@ -455,7 +455,7 @@ def test_type_errors() -> None:
     with pytest.raises(TypeError, match="`band` must be a pair"):
         polbrdf.radiance(PAINT, 30, 0, band=np.ones(3))  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="`sky` must be a string"):
-        polbrdf.radiance(PAINT, 30, 0, wavelength_um=10, sky=None)  # type: ignore[arg-type]
+        polbrdf.radiance(PAINT, 30, 0, wavelength_um=10, sky=3)  # type: ignore[call-overload]
     with pytest.raises(ValueError, match="broadcast"):
         polbrdf.planck([1.0, 2.0], [300.0, 200.0, 100.0])
 

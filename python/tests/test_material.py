@@ -162,3 +162,48 @@ def test_missing_n_and_bad_files(tmp_path: Path) -> None:
         Material.from_toml(tmp_path)
     with pytest.raises(ValueError, match=r"<string>:1: "):
         Material.from_toml_str("n = = 1")
+
+
+#: Bad material files: syntax, unknown key, wrong type, bad value, exclusive keys, a table, no
+#: `n`, not UTF-8, a missing index file.
+BAD_FILES: list[bytes] = [
+    b"n = = 1\n",
+    b"n = 1.5\nsigma_deg = 10\ncolour = 3\n",
+    b"n = 1.5\nsigma_deg = 10\nform = 3\n",
+    b"n = 1.5\nsigma_deg = 10\nform = \"fancy\"\n",
+    b"# comment\nn = -1\nsigma_deg = 10\n",
+    b"n = 1.5\n\nsigma_deg = 10\nb = 3\n",
+    b"n = 1.5\nsigma_deg = 10\n[extra]\nx = 1\n",
+    b"sigma_deg = 10\n",
+    b'n = 1.5\nname = "\xff"\n',
+    b'index = "no-such.yml"\nsigma_deg = 10\n',
+    b'index = "library:Au/Johnson"\nn = 1.5\nsigma_deg = 10\n',
+]
+
+
+@pytest.mark.parametrize("content", BAD_FILES)
+def test_a_bad_material_file_gives_the_cli_s_message(tmp_path: Path, content: bytes) -> None:
+    # One material-file reader: polbrdf-io's, the CLI's; the message names file and line.
+    from support import cli_binary
+
+    p = tmp_path / "bad.toml"
+    p.write_bytes(content)
+    with pytest.raises(ValueError) as info:
+        Material.from_toml(p)
+    message = str(info.value)
+    assert message.startswith(f"{p}:")
+    cli = cli_binary()
+    if cli is None:
+        pytest.skip("the polbrdf CLI binary is not built: only Python's message checked")
+    import subprocess
+
+    geometry = tmp_path / "g.csv"
+    geometry.write_text("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n10,0,10,180\n")
+    r = subprocess.run(
+        [str(cli), "eval", "--material", str(p), "--input", str(geometry)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert r.returncode == 3, r.stderr
+    assert message in r.stderr

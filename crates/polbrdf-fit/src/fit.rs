@@ -30,6 +30,19 @@ pub enum Observable {
 }
 
 impl Observable {
+    /// Every quantity, in the order of [`Observable::parse`]'s list: `brdf`, `dolp`, `brdf_s`,
+    /// `brdf_p`, `m00` … `m33` (row-major).
+    pub fn all() -> Vec<Observable> {
+        let mut all = vec![
+            Observable::Brdf,
+            Observable::Dolp,
+            Observable::BrdfS,
+            Observable::BrdfP,
+        ];
+        all.extend((0..16).map(|k| Observable::Mueller(k / 4, k % 4)));
+        all
+    }
+
     /// From a column name: `brdf`, `dolp`, `brdf_s`, `brdf_p`, `m00` … `m33`.
     pub fn parse(name: &str) -> Option<Self> {
         match name {

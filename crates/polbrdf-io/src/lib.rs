@@ -27,13 +27,13 @@ pub use csv_io::{
     read_views_csv, CsvReader, CsvTable, GeometryTable,
 };
 pub use error::{Error, Result};
-pub use material::{load_material, material_to_toml, parse_material};
+pub use material::{load_material, material_to_toml, parse_material, read_material};
 pub use measurements::{parse_measurements_csv, read_measurements_csv, MeasurementTable};
 pub use pbsdf::{write_pbsdf, PbsdfTable};
 pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
-pub use scene::{parse_scene, read_scene, Scene, SceneObject};
+pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
 pub use tensorfile::TensorFile;
 pub use write::{
     check_distinct, install_signal_cleanup, write_atomic, write_files, Output, Target,

@@ -191,6 +191,16 @@ pub fn load_material(arg: &str) -> Result<MaterialSpec> {
             ),
         });
     }
+    read_material(path)
+}
+
+/// Reads the material file `path` (`-`: standard input) and parses it ([`parse_material`]):
+/// the one material-file reader of the CLI and the Python module.
+///
+/// # Errors
+/// [`Error::Read`] if it cannot be read; [`Error::Syntax`] if it is not UTF-8 text; as
+/// [`parse_material`].
+pub fn read_material(path: &Path) -> Result<MaterialSpec> {
     let text = read_text(path)?;
     parse_material(&text, path)
 }

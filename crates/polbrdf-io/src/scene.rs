@@ -266,6 +266,28 @@ const KEYS: &[Key] = &[
     ),
 ];
 
+/// Every key and table of a scene file by its dotted name (`table.key` inside a table), tables
+/// before their keys, in the order of the format's description.
+pub fn key_names() -> impl Iterator<Item = &'static str> {
+    KEYS.iter().map(|k| k.name)
+}
+
+/// The names of the sky models (`[sky] model = …`), the default first.
+pub fn sky_model_names() -> impl Iterator<Item = &'static str> {
+    SKY_MODELS.iter().map(|m| m.name)
+}
+
+/// The value of a key of a scene file, as given.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneValue {
+    /// A number (an integer read as a float).
+    Number(f64),
+    /// An array of numbers.
+    Numbers(Vec<f64>),
+    /// A string; a file name as the reader finds it (relative to the scene file's folder).
+    Text(String),
+}
+
 /// The table a dotted key belongs to (`None` at the top level) and its name inside it.
 fn split(name: &str) -> (Option<&str>, &str) {
     match name.split_once('.') {
@@ -929,7 +951,7 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
                 irradiance,
                 dop_max: doc
                     .number("sky.dop_max")
-                    .unwrap_or(SkyModel::DEFAULT_DOP_MAX),
+                    .unwrap_or(polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX),
             }
         }
         SkyKind::Table => SkyModel::Table(
@@ -982,6 +1004,44 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
         target: object(&doc, &TARGET)?,
         background: object(&doc, &BACKGROUND)?,
     })
+}
+
+/// Reads a scene file as [`read_scene`] does (every check, the same errors) and returns the
+/// keys it gives besides the scene: `(dotted name, value)` in the order of [`key_names`], tables
+/// left out. File names (`band.response`, `sky.file`, a `material` that names a file) are
+/// given as the reader finds them: relative to the scene file's folder, joined to it.
+///
+/// # Errors
+/// As [`read_scene`].
+pub fn read_scene_keys(path: &Path) -> Result<(Scene, Vec<(&'static str, SceneValue)>)> {
+    let text = read_text(path)?;
+    let scene = parse_scene(&text, path)?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let text = &*crate::csv_io::lone_cr_to_lf(text);
+    let doc = Doc::parse(text, path)?;
+    let files = ["band.response", "sky.file"];
+    let materials = ["target.material", "background.material"];
+    let keys = KEYS
+        .iter()
+        .filter_map(|k| {
+            let value = match doc.found.get(k.name)? {
+                (_, Value::String(s)) if files.contains(&k.name) => {
+                    SceneValue::Text(doc.resolve(s).to_string_lossy().into_owned())
+                }
+                (_, Value::String(s))
+                    if materials.contains(&k.name) && crate::material::names_a_file(s) =>
+                {
+                    SceneValue::Text(doc.resolve(s).to_string_lossy().into_owned())
+                }
+                (_, Value::String(s)) => SceneValue::Text(s.clone()),
+                (_, Value::Array(_)) => SceneValue::Numbers(doc.numbers(k.name)?),
+                (_, Value::Table(_)) => return None,
+                _ => SceneValue::Number(doc.number(k.name)?),
+            };
+            Some((k.name, value))
+        })
+        .collect();
+    Ok((scene, keys))
 }
 
 /// Reads a scene file (`-`: standard input, relative file names then taken relative to the

@@ -1260,3 +1260,76 @@ fn errors_are_data_errors_with_structure() {
         "{e}"
     );
 }
+
+#[test]
+fn scene_keys_as_given_with_file_names_joined_to_the_folder() {
+    let (dir, path) = folder(
+        &[
+            ("b/band.csv", BAND.as_bytes()),
+            ("m.toml", b"n = 1.5\nsigma_deg = 10\n"),
+        ],
+        "scene.toml",
+        b"[band]\nresponse = \"b/band.csv\"\nstep_um = 1\n[target]\nmaterial = \"m.toml\"\n\
+          [background]\nmaterial = \"paint\"\ntemperature_k = 300\n[sun]\nzenith_deg = 30\n\
+          irradiance = 2\nstokes = [1, 0.5, 0, 0]\n[sky]\nmodel = \"cie-clear\"\nirradiance = 1\n",
+    );
+    let (scene, keys) = polbrdf_io::read_scene_keys(&path).unwrap();
+    assert_eq!(scene, read_scene(&path).unwrap());
+    use polbrdf_io::SceneValue::{Number, Numbers, Text};
+    let joined = |f: &str| Text(dir.path().join(f).to_string_lossy().into_owned());
+    assert_eq!(
+        keys,
+        vec![
+            ("band.response", joined("b/band.csv")),
+            ("band.step_um", Number(1.0)),
+            ("target.material", joined("m.toml")),
+            // A preset name is no file name: as given.
+            ("background.material", Text("paint".into())),
+            ("background.temperature_k", Number(300.0)),
+            ("sun.zenith_deg", Number(30.0)),
+            ("sun.irradiance", Number(2.0)),
+            ("sun.stokes", Numbers(vec![1.0, 0.5, 0.0, 0.0])),
+            ("sky.model", Text("cie-clear".into())),
+            ("sky.irradiance", Number(1.0)),
+        ]
+    );
+    // The default dop_max is the core's.
+    assert!(matches!(
+        scene.thermal.sky,
+        SkyModel::ClearSky { dop_max, .. }
+            if dop_max == polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX
+    ));
+    // A bad file is the reader's error.
+    std::fs::write(&path, "wavelength_um = -1\n").unwrap();
+    let e = polbrdf_io::read_scene_keys(&path).unwrap_err().to_string();
+    assert_eq!(e, read_scene(&path).unwrap_err().to_string());
+}
+
+#[test]
+fn key_and_sky_model_names() {
+    let keys: Vec<_> = polbrdf_io::scene::key_names().collect();
+    assert_eq!(keys.len(), 27);
+    assert_eq!(
+        keys[..4],
+        ["wavelength_um", "band", "band.response", "band.step_um"]
+    );
+    let skies: Vec<_> = polbrdf_io::scene::sky_model_names().collect();
+    assert_eq!(
+        skies,
+        [
+            "none",
+            "uniform",
+            "thermal",
+            "profile",
+            "cie-clear",
+            "table"
+        ]
+    );
+    // Every model parses (with its keys), and its name is the one a file gives.
+    for model in skies {
+        let e = parse(&format!("wavelength_um = 1\n[sky]\nmodel = \"{model}\"\n"));
+        if let Err(e) = e {
+            assert!(!e.to_string().contains("unknown sky model"), "{e}");
+        }
+    }
+}

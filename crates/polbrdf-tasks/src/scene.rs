@@ -7,7 +7,7 @@ use crate::error::{TaskError, TaskResult};
 use crate::spectrum::NamedMaterial;
 use polbrdf::analysis::contrast::Illumination;
 use polbrdf::analysis::scene::{Observer, Sun};
-use polbrdf::analysis::sky::{TableSky, ZenithProfile};
+use polbrdf::analysis::sky::{ClearSky, TableSky, ZenithProfile};
 use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
 use polbrdf::{Spectrum, Stokes};
 use polbrdf_io::Scene;
@@ -16,9 +16,10 @@ use std::path::Path;
 /// The scene defaults, re-exported from their one definition (the core) for the adapters.
 pub mod defaults {
     pub use polbrdf::analysis::scene::Sun;
+    pub use polbrdf::analysis::sky::ClearSky;
     pub use polbrdf::analysis::{Atmosphere, SkyModel};
     /// `dop_max` of the `cie-clear` sky when not given.
-    pub const DOP_MAX: f64 = SkyModel::DEFAULT_DOP_MAX;
+    pub const DOP_MAX: f64 = ClearSky::DEFAULT_DOP_MAX;
 }
 
 /// A setup that is valid but probably not what was meant.
@@ -178,7 +179,7 @@ pub enum SkyRequest {
         radiance: Vec<f64>,
     },
     /// `model = "cie-clear"`: horizontal `irradiance` and `dop_max` (default
-    /// [`SkyModel::DEFAULT_DOP_MAX`]); needs a sun.
+    /// [`ClearSky::DEFAULT_DOP_MAX`]); needs a sun.
     ClearSky {
         /// W·m⁻²·µm⁻¹.
         irradiance: f64,
@@ -269,7 +270,7 @@ impl SceneRequest {
                 dop_max,
             } => SkyModel::ClearSky {
                 irradiance: *irradiance,
-                dop_max: dop_max.unwrap_or(SkyModel::DEFAULT_DOP_MAX),
+                dop_max: dop_max.unwrap_or(ClearSky::DEFAULT_DOP_MAX),
             },
             SkyRequest::Table {
                 theta_deg,

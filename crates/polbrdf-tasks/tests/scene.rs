@@ -32,7 +32,7 @@ fn scene_defaults_are_the_cores_and_round_trip() {
     assert_eq!(a.thermal, b.thermal, "absent keys take the core's defaults");
     match &a.thermal.sky {
         defaults::SkyModel::ClearSky { dop_max, .. } => {
-            assert_eq!(*dop_max, defaults::SkyModel::DEFAULT_DOP_MAX);
+            assert_eq!(*dop_max, defaults::ClearSky::DEFAULT_DOP_MAX);
         }
         other => panic!("{other:?}"),
     }

@@ -63,11 +63,6 @@ pub enum SkyModel {
 }
 
 impl SkyModel {
-    /// The default maximum degree of polarization δ_max of the clear sky
-    /// ([`SkyModel::ClearSky`]): the one definition, which the scene file reader and the Python
-    /// module use when `dop_max` is not given.
-    pub const DEFAULT_DOP_MAX: f64 = 0.75;
-
     /// The uniform radiance at `lambda_um`, `None` for a sky that is not uniform.
     fn uniform_at(&self, lambda_um: f64) -> Option<f64> {
         match self {

@@ -218,6 +218,10 @@ pub struct ClearSky {
 }
 
 impl ClearSky {
+    /// The default maximum degree of polarization δ_max of the clear sky (90° from the sun),
+    /// written only here: the scene files' `dop_max` and the Python module's take it.
+    pub const DEFAULT_DOP_MAX: f64 = 0.75;
+
     /// The parameters `(a, b, c, d, e)` of CIE sky type 12 (clear, low turbidity).
     pub const CIE12: (f64, f64, f64, f64, f64) = (-1.0, -0.32, 10.0, -3.0, 0.45);
 

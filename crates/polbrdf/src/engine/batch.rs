@@ -144,6 +144,9 @@ pub enum Precision {
 }
 
 impl Precision {
+    /// Every precision (the one list the Python module's `Literal` types spell).
+    pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
+
     /// `"float64"` or `"float32"` (NumPy's names).
     pub fn name(self) -> &'static str {
         match self {

@@ -15,6 +15,10 @@ pub enum AzimuthTerm {
 }
 
 impl AzimuthTerm {
+    /// Every azimuth term (the one list that material files, the CLI and the Python module's
+    /// `Literal` types spell).
+    pub const ALL: [AzimuthTerm; 2] = [AzimuthTerm::None, AzimuthTerm::Eq3];
+
     /// The name used in material files (`"none"`, `"eq3"`).
     pub fn as_str(&self) -> &'static str {
         match self {

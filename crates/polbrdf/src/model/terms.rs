@@ -20,6 +20,10 @@ pub enum Form {
 }
 
 impl Form {
+    /// Every form, in the order of the names in messages: the one list that the material
+    /// files, the CLI and the Python module's `Literal` types spell.
+    pub const ALL: [Form; 2] = [Form::Standard, Form::Paper];
+
     /// The name used in material files (`"standard"`, `"paper"`).
     pub fn as_str(&self) -> &'static str {
         match self {
