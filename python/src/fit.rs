@@ -248,6 +248,43 @@ impl PyFitResult {
     }
 }
 
+/// The first `n` geometries of the four angle arrays (degrees when `degrees`), a bad angle
+/// named by its Python argument and index.
+fn geometries(
+    py: Python<'_>,
+    input: [&[f64]; 4],
+    n: usize,
+    degrees: bool,
+) -> PyResult<Vec<polbrdf::Geometry>> {
+    (0..n)
+        .map(|i| {
+            let [a, b, c, d] = input.map(|s| s[i]);
+            let g = if degrees {
+                polbrdf::Geometry::from_degrees(a, b, c, d)
+            } else {
+                polbrdf::Geometry::new(a, b, c, d)
+            };
+            g.map_err(|e| match e {
+                polbrdf::Error::InvalidAngle {
+                    name,
+                    value,
+                    degrees,
+                    problem,
+                    ..
+                } => polbrdf::Error::InvalidAngle {
+                    name: python_name(name),
+                    value,
+                    degrees,
+                    index: Some(i),
+                    problem,
+                },
+                other => other,
+            })
+            .map_err(|e| core_err(py, &e))
+        })
+        .collect()
+}
+
 /// Fits the `free` parameters of `material` to measured quantities at `n` geometries.
 /// `names[k]` is `brdf`, `dolp` or `m00` … `m33`; `values[k]` has length `n` with NaN where not
 /// measured; `sigmas[k]` (1-σ, > 0 where measured) or `None` for equal weights; `wavelength_um`
@@ -288,32 +325,7 @@ pub(crate) fn fit_flat<'py>(
     }
     let fit_err = |e: polbrdf_fit::FitError| PyValueError::new_err(e.to_string());
     let free: Vec<Param> = Param::parse_list(&free.join(",")).map_err(fit_err)?;
-    let mut geometries = Vec::with_capacity(n);
-    for i in 0..n {
-        let [a, b, c, d] = input.map(|s| s[i]);
-        let g = if degrees {
-            polbrdf::Geometry::from_degrees(a, b, c, d)
-        } else {
-            polbrdf::Geometry::new(a, b, c, d)
-        };
-        let g = g.map_err(|e| match e {
-            polbrdf::Error::InvalidAngle {
-                name,
-                value,
-                degrees,
-                problem,
-                ..
-            } => polbrdf::Error::InvalidAngle {
-                name: python_name(name),
-                value,
-                degrees,
-                index: Some(i),
-                problem,
-            },
-            other => other,
-        });
-        geometries.push(g.map_err(|e| core_err(py, &e))?);
-    }
+    let geometries = geometries(py, input, n, degrees)?;
     let mut data = Vec::new();
     for ((name, v), s) in names.iter().zip(&values).zip(&sigmas) {
         let observable = Observable::parse(name).ok_or_else(|| {

@@ -10,6 +10,7 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{ClearSky, TableSky, ZenithProfile};
 use polbrdf::{Band, Spectrum};
+use polbrdf_io::scene::SkyKind;
 use polbrdf_io::{SceneObject, SceneValue};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -101,35 +102,36 @@ pub(crate) fn radiance_sky(sky: &str, args: SkyArgs<'_>, has_sun: bool) -> PyRes
         ("dop_max", args.dop_max.is_some()),
         ("sky_table", args.table.is_some()),
     ];
+    // The model by its name in the scene files' list (the one list of sky models).
+    let Some(kind) = polbrdf_io::scene::sky_kind(sky) else {
+        let known: Vec<String> = polbrdf_io::scene::sky_model_names()
+            .map(|m| format!("\"{m}\""))
+            .collect();
+        return Err(PyValueError::new_err(format!(
+            "invalid `sky`: unknown sky model `{sky}` (expected {})",
+            known.join(", ")
+        )));
+    };
     // The arguments the model needs, those it may take, and how to say so.
-    let (needs, optional, what): (&[&str], &[&str], &str) = match sky {
-        "none" => (&[], &[], "no sky argument"),
-        "uniform" => (&["sky_radiance"], &[], "`sky_radiance` (W·m⁻²·sr⁻¹·µm⁻¹)"),
-        "thermal" => (&["sky_temperature_k"], &[], "`sky_temperature_k` (K)"),
-        "profile" => (
+    let (needs, optional, what): (&[&str], &[&str], &str) = match kind {
+        SkyKind::None => (&[], &[], "no sky argument"),
+        SkyKind::Uniform => (&["sky_radiance"], &[], "`sky_radiance` (W·m⁻²·sr⁻¹·µm⁻¹)"),
+        SkyKind::Thermal => (&["sky_temperature_k"], &[], "`sky_temperature_k` (K)"),
+        SkyKind::Profile => (
             &["sky_profile"],
             &[],
             "`sky_profile` = (zenith_deg, radiance)",
         ),
-        "cie-clear" => (
+        SkyKind::ClearSky => (
             &["sky_irradiance"],
             &["dop_max"],
             "`sky_irradiance` (W·m⁻²·µm⁻¹), optionally `dop_max`, and a `sun`",
         ),
-        "table" => (
+        SkyKind::Table => (
             &["sky_table"],
             &[],
             "`sky_table` = (theta_deg, phi_deg, stokes)",
         ),
-        other => {
-            let known: Vec<String> = polbrdf_io::scene::sky_model_names()
-                .map(|m| format!("\"{m}\""))
-                .collect();
-            return Err(PyValueError::new_err(format!(
-                "invalid `sky`: unknown sky model `{other}` (expected {})",
-                known.join(", ")
-            )));
-        }
     };
     for (name, is_given) in given {
         if is_given && !needs.contains(&name) && !optional.contains(&name) {
@@ -143,32 +145,32 @@ pub(crate) fn radiance_sky(sky: &str, args: SkyArgs<'_>, has_sun: bool) -> PyRes
             )));
         }
     }
-    if sky == "cie-clear" && !has_sun {
-        return Err(PyValueError::new_err(
-            "sky = \"cie-clear\" needs a `sun` = (zenith, azimuth, irradiance): the clear \
-             sky's radiance and polarization are set by the sun's position",
-        ));
+    if kind == SkyKind::ClearSky && !has_sun {
+        return Err(PyValueError::new_err(format!(
+            "sky = \"{sky}\" needs a `sun` = (zenith, azimuth, irradiance): the clear sky's \
+             radiance and polarization are set by the sun's position",
+        )));
     }
-    Ok(match sky {
-        "none" => SkyModel::None,
-        "uniform" => SkyModel::Uniform {
+    Ok(match kind {
+        SkyKind::None => SkyModel::None,
+        SkyKind::Uniform => SkyModel::Uniform {
             radiance: args.radiance.expect("checked above"),
         },
-        "thermal" => SkyModel::Thermal {
+        SkyKind::Thermal => SkyModel::Thermal {
             temperature_k: args.temperature_k.expect("checked above"),
         },
-        "profile" => {
+        SkyKind::Profile => {
             let (zenith_deg, radiance) = table(args.profile).expect("checked above");
             SkyModel::Profile(
                 ZenithProfile::new(zenith_deg, radiance)
                     .map_err(|e| PyValueError::new_err(format!("`sky_profile`: {e}")))?,
             )
         }
-        "cie-clear" => SkyModel::ClearSky {
+        SkyKind::ClearSky => SkyModel::ClearSky {
             irradiance: args.irradiance.expect("checked above"),
             dop_max: args.dop_max.unwrap_or(ClearSky::DEFAULT_DOP_MAX),
         },
-        _ => SkyModel::Table(sky_table(args.table.expect("checked above"))?),
+        SkyKind::Table => SkyModel::Table(sky_table(args.table.expect("checked above"))?),
     })
 }
 

@@ -277,6 +277,11 @@ pub fn sky_model_names() -> impl Iterator<Item = &'static str> {
     SKY_MODELS.iter().map(|m| m.name)
 }
 
+/// The sky model named `name` (`[sky] model = …`), or `None` for an unknown name.
+pub fn sky_kind(name: &str) -> Option<SkyKind> {
+    SKY_MODELS.iter().find(|m| m.name == name).map(|m| m.kind)
+}
+
 /// The value of a key of a scene file, as given.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SceneValue {
@@ -310,14 +315,21 @@ fn keys_of(table: Option<&str>) -> Vec<&'static str> {
         .collect()
 }
 
-/// Which sky a row of `SKY_MODELS` builds.
+/// Which sky a row of `SKY_MODELS` builds: the sky models by kind, for readers of other
+/// spellings of a scene (the Python module's keywords) that take the names from here.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum SkyKind {
+pub enum SkyKind {
+    /// `none`: no sky.
     None,
+    /// `uniform`.
     Uniform,
+    /// `thermal`.
     Thermal,
+    /// `profile`.
     Profile,
+    /// `cie-clear`.
     ClearSky,
+    /// `table`.
     Table,
 }
 

@@ -1325,7 +1325,16 @@ fn key_and_sky_model_names() {
             "table"
         ]
     );
-    // Every model parses (with its keys), and its name is the one a file gives.
+    // Every model has a kind, each its own; a model parses (with its keys) by that name.
+    let kinds: Vec<_> = skies
+        .iter()
+        .map(|m| polbrdf_io::scene::sky_kind(m).unwrap())
+        .collect();
+    assert!(kinds
+        .iter()
+        .enumerate()
+        .all(|(i, k)| !kinds[..i].contains(k)));
+    assert_eq!(polbrdf_io::scene::sky_kind("cloudy"), None);
     for model in skies {
         let e = parse(&format!("wavelength_um = 1\n[sky]\nmodel = \"{model}\"\n"));
         if let Err(e) = e {
