@@ -101,3 +101,19 @@ impl From<polbrdf_plot::Error> for CliError {
         CliError::Plot(e)
     }
 }
+
+impl From<polbrdf_tasks::TaskError> for CliError {
+    fn from(e: polbrdf_tasks::TaskError) -> Self {
+        use polbrdf_tasks::TaskError;
+        match e {
+            TaskError::Io(e) => CliError::Io(e),
+            TaskError::Model(e) => CliError::Model(e),
+            TaskError::Fit(e) => CliError::Fit(e),
+            // The request's field is the option's name with `-` for `_`.
+            TaskError::Invalid { field, message } => {
+                CliError::Invalid(format!("--{}: {message}", field.replace('_', "-")))
+            }
+            e => CliError::Invalid(e.to_string()),
+        }
+    }
+}

@@ -7,6 +7,8 @@ use crate::common::{polbrdf, stderr};
 use std::path::Path;
 
 const GEO: &str = "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,180\n";
+/// A valid material file.
+const MAT: &str = "n = 1.5\nk = 0\nsigma_deg = 10\nrho_d = 0.02\nrho_v = 0.01\n";
 const MEAS: &str = "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n20,0,20,180,1.0\n30,0,30,180,0.5\n40,0,40,180,0.4\n50,0,50,180,0.5\n";
 
 struct Case {
@@ -708,13 +710,28 @@ fn table_common() -> Vec<Case> {
         fit_pbsdf("pbsdf: offset past the end", { let mut b = pbsdf(|_| {}); let at = 18 + 2 + 5 + 2 + 1; b[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes()); b }, &["t.pbsdf", "field `phi_d`", "runs past the end"]),
         fit_pbsdf("pbsdf: overlapping fields", { let mut b = pbsdf(|_| {}); let first = 18 + 2 + 5 + 2 + 1; let second = first + 8 + 16 + 2 + 7 + 2 + 1; let v = b[first..first + 8].to_vec(); b[second..second + 8].copy_from_slice(&v); b }, &["t.pbsdf", "overlaps field"]),
         fit_pbsdf("pbsdf: shape overflow", pbsdf(|f| { f[4].2 = vec![u64::MAX, 3, 3, 5, 4, 4]; }), &["t.pbsdf", "field `M`", "overflows"]),
-        case("pbsdf: --subsample 0", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--subsample", "0", "--output", "{d}/out.json"], 3, &["--subsample 0"]),
+        case("pbsdf: --subsample 0", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--subsample", "0", "--output", "{d}/out.json"], 3, &["--subsample", "stride must be ≥ 1"]),
         case("pbsdf: --per-wavelength", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--per-wavelength", "--output", "{d}/out.json"], 2, &["per band already"]),
-        export("export: four bands", &["--bands", "450,500,550,600"], 3, &["--bands", "4 band(s)", "exactly five"]),
-        export("export: bands not increasing", &["--bands", "450,500,500,600,650"], 3, &["--bands", "increase"]),
-        export("export: band not a number", &["--bands", "450,green,550,600,650"], 3, &["--bands", "`green`"]),
+        export("export: four bands", &["--bands-nm", "450,500,550,600"], 3, &["--bands", "4 band(s)", "exactly five"]),
+        export("export: bands not increasing", &["--bands-nm", "450,500,500,600,650"], 3, &["--bands", "increase"]),
+        export("export: band not a number", &["--bands-nm", "450,green,550,600,650"], 3, &["--bands", "`green`"]),
         export("export: grid of two numbers", &["--grid", "37,46"], 3, &["--grid", "three node counts"]),
         export("export: grid of one node", &["--grid", "1,46,91"], 3, &["--grid", "2–4096"]),
+        // Issue 35: the option is named for its unit (nm, where every other option is in µm).
+        export("export: --bands renamed --bands-nm", &["--bands", "450,500,550,600,650"], 2, &["--bands", "--bands-nm"]),
+        // Issue 35: the table's size is bounded (4 GiB) and checked before anything is computed.
+        export("export: 4096³ grid", &["--grid", "4096,4096,4096"], 2, &["--grid 4096,4096,4096", "21990.2 GB", "at most 4294967296 bytes"]),
+        export("export: 2×4096×4096 grid", &["--grid", "2,4096,4096"], 2, &["--grid", "10.7 GB", "at most"]),
+        case("export: the material file as the output", vec![("m.toml", t(MAT))], &["export", "--material", "{d}/m.toml", "--grid", "3,3,3", "--out", "{d}/m.toml"], 3, &["m.toml", "same file as the input"]),
+        // Issue 35: --starts is checked before the table is read (here, a table that is no
+        // TensorFile at all).
+        case("pbsdf: --starts 10001 before the table", vec![("t.pbsdf", t("not a table"))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--starts", "10001", "--output", "{d}/out.json"], 2, &["--starts", "at most 10000"]),
+        // Issue 35: the per-band plot names are checked against the inputs, the other outputs
+        // and each other before anything is written.
+        case("pbsdf: band plot over fit.json", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/p.png", "--output", "{d}/p_500nm.png"], 3, &["p_500nm.png", "same file as the output"]),
+        case("pbsdf: band plot over the material", vec![("t.pbsdf", pbsdf(|_| {})), ("m_450nm.toml", t(MAT))], &["fit", "--material", "{d}/m_450nm.toml", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/m.toml", "--output", "{d}/out.json"], 3, &["m_450nm.toml", "same file as the input"]),
+        case("pbsdf: band plot over the table", vec![("t_450nm.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t_450nm.pbsdf", "--free", "n", "--plot", "{d}/t.pbsdf", "--output", "{d}/out.json"], 3, &["t_450nm.pbsdf", "same file as the input"]),
+        case("pbsdf: repeated band wavelengths", vec![("t.pbsdf", pbsdf(|f| f[3].3 = [450u16, 450, 550, 600, 650].iter().flat_map(|x| x.to_le_bytes()).collect()))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/p.svg", "--output", "{d}/out.json"], 3, &["p_450nm.svg", "same file as the output"]),
         case("export: unknown material", vec![], &["export", "--material", "nope", "--out", "{d}/out.json"], 3, &["nope"]),
         case("export: directory missing", vec![], &["export", "--material", "paint", "--grid", "3,3,3", "--out", "{d}/no/out.pbsdf"], 4, &["out.pbsdf", "cannot write"]),
         // Usage errors (clap).

@@ -508,3 +508,89 @@ fn fit_writes_its_files_before_a_closed_standard_output() {
     assert!(json.is_file());
     assert_ne!(o.status.code(), Some(134), "aborted");
 }
+
+/// Issue 35: `export` writes through the output layer like every other command: `-` is
+/// standard output, a FIFO is written to its reader, a symlink stays a link, a read-only or
+/// hard-linked file is refused untouched, and the material file is never its output.
+#[cfg(unix)]
+#[test]
+fn export_writes_through_the_output_layer() {
+    use std::os::unix::fs::{FileTypeExt, PermissionsExt};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let export = |out: &str| {
+        Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+            .current_dir(d)
+            .args([
+                "export",
+                "--material",
+                "paint",
+                "--grid",
+                "3,3,3",
+                "--out",
+                out,
+            ])
+            .output()
+            .unwrap()
+    };
+    // `-`: the table on standard output, no file named `-`.
+    let o = export("-");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.stdout.starts_with(b"tensor_file\0"));
+    assert!(!d.join("-").exists());
+    // A symlink: its target written, the link kept.
+    std::fs::write(d.join("real.pbsdf"), "old").unwrap();
+    std::os::unix::fs::symlink("real.pbsdf", d.join("link.pbsdf")).unwrap();
+    let o = export("link.pbsdf");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::symlink_metadata(d.join("link.pbsdf"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read(d.join("real.pbsdf"))
+        .unwrap()
+        .starts_with(b"tensor_file\0"));
+    // Read-only, hard-linked: refused, untouched.
+    let ro = d.join("ro.pbsdf");
+    std::fs::write(&ro, "keep").unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let o = export("ro.pbsdf");
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("read-only"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&ro).unwrap(), "keep");
+    std::fs::write(d.join("a.pbsdf"), "keep").unwrap();
+    std::fs::hard_link(d.join("a.pbsdf"), d.join("b.pbsdf")).unwrap();
+    let o = export("a.pbsdf");
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("2 hard links"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(d.join("b.pbsdf")).unwrap(), "keep");
+    // A device: written, not replaced.
+    let o = export("/dev/null");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::metadata("/dev/null")
+        .unwrap()
+        .file_type()
+        .is_char_device());
+    // A FIFO: its reader gets the table.
+    let fifo = d.join("pipe");
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let path = fifo.clone();
+        let reader = std::thread::spawn(move || {
+            let mut b = Vec::new();
+            std::fs::File::open(&path)
+                .unwrap()
+                .read_to_end(&mut b)
+                .unwrap();
+            b
+        });
+        let o = export("pipe");
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(reader.join().unwrap().starts_with(b"tensor_file\0"));
+        assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    }
+    assert!(temporaries(d).is_empty(), "{:?}", temporaries(d));
+}

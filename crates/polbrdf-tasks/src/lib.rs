@@ -11,5 +11,7 @@
 //! `polbrdf-cli`, the Python module. Nothing below this crate imports it.
 
 mod error;
+pub mod fit;
+pub mod pbsdf;
 
 pub use error::{TaskError, TaskResult};
