@@ -12,6 +12,7 @@
 
 mod error;
 pub mod fit;
+pub mod lut;
 pub mod pbsdf;
 
 pub use error::{TaskError, TaskResult};

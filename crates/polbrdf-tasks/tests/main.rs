@@ -1,1 +1,4 @@
-//! Tests of the task layer: one module per job (added with the jobs).
+//! Tests of the task layer: one module per job.
+
+mod lut;
+mod pbsdf;
