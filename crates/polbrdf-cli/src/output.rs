@@ -99,12 +99,46 @@ pub fn paths_of(command: &str, m: &clap::ArgMatches, role: Role) -> Vec<PathBuf>
         .collect()
 }
 
+/// The files named inside an input of option `id`: those a scene names (band, sky table and
+/// profile, materials and their index files), or the index file a material names. An input
+/// that cannot be read names none here (the command reports it).
+fn named_inside(id: &str, path: &Path) -> Vec<PathBuf> {
+    match id {
+        "scene" => polbrdf_io::read_scene(path).map_or_else(|_| Vec::new(), |s| s.files),
+        "material" | "target" | "background" => path
+            .to_str()
+            .and_then(|arg| polbrdf_io::load_material(arg).ok())
+            .and_then(|spec| polbrdf_io::material::index_file(&spec))
+            .into_iter()
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
 /// The output layer's checks of a command line, before the command runs: no output file is an
-/// input or another output (compared by device and inode); an output directory that exists is
-/// a directory.
+/// input, a file named inside an input (scene, material), or another output (compared by
+/// device and inode); an output directory that exists is a directory.
 pub fn check_paths(command: &str, m: &clap::ArgMatches) -> Result<(), CliError> {
-    let inputs = paths_of(command, m, Role::Input);
+    let mut inputs = paths_of(command, m, Role::Input);
     let files = paths_of(command, m, Role::File);
+    if !files.is_empty() {
+        for (_, id, _) in PATH_OPTIONS
+            .iter()
+            .filter(|(c, _, r)| *c == command && *r == Role::Input)
+        {
+            let given: Vec<PathBuf> = m
+                .try_get_raw(id)
+                .ok()
+                .flatten()
+                .into_iter()
+                .flatten()
+                .map(PathBuf::from)
+                .collect();
+            for p in given {
+                inputs.extend(named_inside(id, &p));
+            }
+        }
+    }
     let ins: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     let outs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
     polbrdf_io::check_distinct(&ins, &outs)?;

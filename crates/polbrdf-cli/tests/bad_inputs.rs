@@ -552,6 +552,11 @@ fn table_common() -> Vec<Case> {
         radiance_scene("scene wavelength 0", "wavelength_um = 0\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "> 0"]),
         radiance_scene("scene wavelength negative", "wavelength_um = -3\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "-3"]),
         radiance_scene("scene wavelength and band", "wavelength_um = 10\n[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:1", "`wavelength_um`", "[band]", "line 2", "not both"]),
+        // Issue 35: files named inside a scene or a material are inputs the output must not
+        // replace (before, `radiance --output <the scene's band file>` replaced it).
+        case("radiance output = the scene's band file", vec![("s.toml", t("[band]\nresponse = \"b.csv\"\n[surface]\ntemperature_k = 300\n")), ("b.csv", t(LWIR))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/b.csv"], 3, &["b.csv", "same file as the input"]),
+        case("radiance output = the scene's sky profile", vec![("s.toml", t("wavelength_um = 10\n[surface]\ntemperature_k = 300\n[sky]\nmodel = \"profile\"\nfile = \"p.csv\"\n")), ("p.csv", t("zenith_deg,radiance\n0,1\n90,2\n"))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/p.csv"], 3, &["p.csv", "same file as the input"]),
+        case("eval output = the material's index file", vec![("m.toml", t("index = \"y.yml\"\nsigma_deg = 5\n")), ("y.yml", t(YML)), ("g.csv", t(GEO_WL))], &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/y.yml"], 3, &["y.yml", "same file as the input"]),
         radiance_scene("scene without spectrum", "[surface]\ntemperature_k = 300\n", vec![], 3, &["s.toml", "no spectrum", "wavelength_um", "[band]"]),
         radiance_scene("band without response", "[band]\nstep_um = 0.1\n", vec![], 3, &["s.toml:1", "`band`", "response"]),
         radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
