@@ -416,6 +416,42 @@ fn sigterm_leaves_no_temporary() {
     assert!(temporaries(dir.path()).is_empty());
 }
 
+/// Issue 35: a signal during `export` leaves no temporary (the tempfile crate's
+/// `.polbrdf-XXXXXX.tmp` of 7–377 MB stayed), nor the destination.
+#[cfg(unix)]
+#[test]
+fn sigterm_during_export_leaves_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.pbsdf");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+        .args([
+            "export",
+            "--material",
+            "paint",
+            "--grid",
+            "181,91,91",
+            "--out",
+        ])
+        .arg(&out)
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    // SAFETY: signalling our own child.
+    unsafe { libc_kill(child.id() as i32, 15) };
+    let status = child.wait().unwrap();
+    if status.success() {
+        eprintln!("the run ended before the signal: nothing to check");
+    } else {
+        assert!(!out.exists());
+    }
+    assert!(
+        temporaries(dir.path()).is_empty(),
+        "{:?}",
+        temporaries(dir.path())
+    );
+}
+
 #[cfg(unix)]
 unsafe fn libc_kill(pid: i32, sig: i32) {
     extern "C" {
