@@ -25,7 +25,7 @@ pub struct Args<'a> {
 }
 
 /// Runs `polbrdf fit` on a measurement CSV (`main` sends a `.pbsdf` table to
-/// [`crate::measured::run`]; the output layer's checks of the paths ran before).
+/// the `.pbsdf` fit of `measured.rs`; the output layer's checks of the paths ran before).
 pub fn run(args: &Args<'_>) -> Result<(), CliError> {
     let base = polbrdf_io::load_material(args.material)?;
     let free = Param::parse_list(args.free)?;
