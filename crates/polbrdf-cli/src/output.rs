@@ -101,8 +101,12 @@ pub fn paths_of(command: &str, m: &clap::ArgMatches, role: Role) -> Vec<PathBuf>
 
 /// The files named inside an input of option `id`: those a scene names (band, sky table and
 /// profile, materials and their index files), or the index file a material names. An input
-/// that cannot be read names none here (the command reports it).
+/// that cannot be read names none here (the command reports it); nor does standard input.
 fn named_inside(id: &str, path: &Path) -> Vec<PathBuf> {
+    // Standard input is read by the command, once.
+    if path.as_os_str() == "-" {
+        return Vec::new();
+    }
     match id {
         "scene" => polbrdf_io::read_scene(path).map_or_else(|_| Vec::new(), |s| s.files),
         "material" | "target" | "background" => path

@@ -630,3 +630,37 @@ fn export_writes_through_the_output_layer() {
     }
     assert!(temporaries(d).is_empty(), "{:?}", temporaries(d));
 }
+
+/// The path checks before a command read the files a scene names, but never standard input:
+/// `--scene -` is read once, by the command.
+#[test]
+fn a_scene_on_standard_input_is_read_by_the_command_only() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+        .args([
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            "-",
+            "--theta-deg",
+            "30",
+            "--output",
+        ])
+        .arg(&out)
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"wavelength_um = 10\n[surface]\ntemperature_k = 300\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out).unwrap().lines().count(), 2);
+}
