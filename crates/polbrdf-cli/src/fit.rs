@@ -2,10 +2,8 @@
 
 use crate::error::CliError;
 use crate::output::write_output;
-use polbrdf_fit::{
-    fit, fit_per_wavelength, Bound, FitOptions, FitResult, Measurement, Observable, Param,
-};
-use serde_json::{json, Map, Value};
+use polbrdf_fit::{fit, fit_per_wavelength, Bound, FitOptions, FitResult, Measurement, Param};
+use serde_json::{json, Value};
 use std::path::Path;
 
 /// What `polbrdf fit` was asked to do.
@@ -26,58 +24,15 @@ pub struct Args<'a> {
     pub exclude_inadmissible: bool,
 }
 
-/// Runs `polbrdf fit`.
+/// Runs `polbrdf fit` on a measurement CSV (`main` sends a `.pbsdf` table to
+/// the `.pbsdf` fit of `measured.rs`; the output layer's checks of the paths ran before).
 pub fn run(args: &Args<'_>) -> Result<(), CliError> {
-    let outputs: Vec<&Path> = [args.output, args.material_out, args.plot, args.index_out]
-        .into_iter()
-        .flatten()
-        .collect();
-    polbrdf_io::check_distinct(&[args.data, Path::new(args.material)], &outputs)?;
-    if crate::measured::is_pbsdf(args.data) {
-        return crate::measured::run(args);
-    }
     let base = polbrdf_io::load_material(args.material)?;
     let free = Param::parse_list(args.free)?;
     crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
-    let mut data = Vec::new();
-    // The line of each measurement, for messages about the data.
-    let mut lines = Vec::new();
-    for (row, g) in table.geometries.iter().enumerate() {
-        for col in &table.columns {
-            let Some(value) = col.values[row] else {
-                continue;
-            };
-            data.push(Measurement {
-                geometry: *g,
-                observable: Observable::parse(&col.name).expect("measurable column names parse"),
-                value,
-                sigma: col.sigmas.as_ref().and_then(|s| s[row]),
-                wavelength_um: table.wavelengths.as_ref().map(|w| w[row]),
-            });
-            lines.push((table.lines[row], col.name.as_str()));
-        }
-    }
-    if let Err(polbrdf_fit::FitError::DataOutOfRange {
-        index,
-        value,
-        sigma,
-        ..
-    }) = polbrdf_fit::check_measurements(&data)
-    {
-        let (line, field) = lines[index];
-        return Err(CliError::Io(polbrdf_io::Error::Field {
-            path: args.data.to_path_buf(),
-            line,
-            field: field.to_string(),
-            message: format!(
-                "{value:e} (σ = {sigma}) is too large for a least-squares fit: |value/σ| > \
-                 {:e} makes χ² overflow (an outlier or a unit error?)",
-                polbrdf_fit::MAX_WEIGHTED_VALUE
-            ),
-        }));
-    }
-    drop(lines);
+    let data = polbrdf_tasks::fit::measurements(&table)?;
+    drop(table);
     let opts = FitOptions {
         extra_starts: args.starts,
         seed: args.seed,
@@ -88,7 +43,7 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
     }
     let result = fit(&base, &free, &data, &opts)?;
 
-    let json = serde_json::to_string_pretty(&to_json(&result, args.data))
+    let json = serde_json::to_string_pretty(&polbrdf_tasks::fit::to_json(&result, args.data))
         .expect("JSON of finite and null values");
     // Files first, standard output next, the summary (standard error) last: a closed pipe
     // never costs a file, and a file that failed is never hidden by a summary.
@@ -96,12 +51,7 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         polbrdf_io::write_atomic(path, (json.clone() + "\n").as_bytes())?;
     }
     if let Some(path) = args.plot {
-        let fig = residual_figure(&result, &data);
-        let bytes = match path.extension().and_then(|e| e.to_str()) {
-            Some("svg") => fig.svg().map_err(CliError::Plot)?.into_bytes(),
-            _ => fig.png().map_err(CliError::Plot)?,
-        };
-        polbrdf_io::write_atomic(path, &bytes)?;
+        crate::residuals::write_plot(path, &result, &data)?;
     }
     if let Some(path) = args.material_out {
         let mut spec = result.spec.clone();
@@ -120,60 +70,6 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         return Err(CliError::NotConverged(result.message));
     }
     Ok(())
-}
-
-fn matrix(m: &[Vec<f64>]) -> Value {
-    Value::from(m.to_vec())
-}
-
-/// The `fit.json` document (contract in the README).
-pub(crate) fn to_json(r: &FitResult, data: &Path) -> Value {
-    let mut params = Map::new();
-    for (k, p) in r.params.iter().enumerate() {
-        let entry = match &r.bounds[k] {
-            Bound::Interior => {
-                json!({"value": r.values[k], "stderr": r.stderr[k], "bound": "interior"})
-            }
-            Bound::AtLowerBound {
-                upper_limit_95,
-                correlation_at_limit,
-            } => {
-                let corr: Option<Map<String, Value>> = correlation_at_limit.as_ref().map(|c| {
-                    r.params
-                        .iter()
-                        .zip(c)
-                        .map(|(q, v)| (q.name().to_string(), Value::from(*v)))
-                        .collect()
-                });
-                json!({"value": r.values[k], "stderr": null, "bound": "lower",
-                       "upper_limit_95": upper_limit_95, "correlation_at_limit": corr})
-            }
-        };
-        params.insert(p.name().to_string(), entry);
-    }
-    let zbs = r.zero_bistatic.as_ref().map(|z| {
-        json!({"a": z.a, "stderr_a": z.stderr_a, "b": z.b, "stderr_b": z.stderr_b,
-               "correlation_ab": z.correlation_ab, "points_used": z.samples.len(),
-               "points_excluded": z.excluded})
-    });
-    json!({
-        "parameters": params,
-        "parameter_order": r.params.iter().map(|p| p.name()).collect::<Vec<_>>(),
-        "covariance": matrix(&r.covariance),
-        "correlation": matrix(&r.correlation),
-        "chi2": r.chi2,
-        "reduced_chi2": r.reduced_chi2,
-        "dof": r.dof,
-        "uncertainty_from_residuals": r.scaled_by_residuals,
-        "converged": r.converged,
-        "iterations": r.iterations,
-        "message": r.message,
-        "starts": {"tried": r.starts.0, "reached_best": r.starts.1},
-        "zero_bistatic": zbs,
-        "data": data.display().to_string(),
-        "measurements": r.residuals.len(),
-        "warnings": r.warnings,
-    })
 }
 
 /// The one-screen summary printed on the terminal.
@@ -293,80 +189,6 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
     s
 }
 
-/// Normalized residuals `(model − data)/σ` against the measurement number, one panel per kind of
-/// measurement (BRDF, DoLP, s/p BRDF, Mueller entries), with ±1σ and ±2σ guides.
-pub(crate) fn residual_figure(r: &FitResult, data: &[Measurement]) -> polbrdf_plot::Figure {
-    use polbrdf_plot::{Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
-    let kind = |o: &Observable| match o {
-        Observable::Brdf => "BRDF",
-        Observable::Dolp => "DoLP",
-        Observable::BrdfS | Observable::BrdfP => "s/p BRDF",
-        Observable::Mueller(..) => "Mueller entries",
-    };
-    let mut kinds: Vec<&str> = Vec::new();
-    for d in data {
-        if !kinds.contains(&kind(&d.observable)) {
-            kinds.push(kind(&d.observable));
-        }
-    }
-    let n = data.len() as f64;
-    let panels = kinds
-        .iter()
-        .map(|k| {
-            let points: Vec<(f64, f64)> = r
-                .residuals
-                .iter()
-                .filter(|res| kind(&data[res.index].observable) == *k)
-                .map(|res| (res.index as f64 + 1.0, (res.model - res.data) / res.sigma))
-                .collect();
-            let rms = (points.iter().map(|p| p.1 * p.1).sum::<f64>() / points.len() as f64).sqrt();
-            let top = points
-                .iter()
-                .map(|p| p.1.abs())
-                .fold(3.0f64, f64::max)
-                .ceil();
-            let guide = |y: f64, label: &str| Line {
-                label: label.to_string(),
-                points: vec![(0.0, y), (n + 1.0, y)],
-                color: if y == 0.0 { PALETTE[7] } else { PALETTE[3] },
-                dashed: y != 0.0,
-                width: 1,
-            };
-            Panel {
-                title: format!("{k}: {} values, RMS {rms:.2}σ", points.len()),
-                x_desc: "measurement number (file order)".into(),
-                y_desc: "(model − data) / σ".into(),
-                x_range: (0.0, n + 1.0),
-                y_range: (-top, top),
-                log_y: false,
-                log_x: false,
-                x_ticks: 8,
-                y_ticks: 9,
-                lines: vec![
-                    guide(0.0, ""),
-                    guide(1.0, "±1σ, ±2σ"),
-                    guide(-1.0, ""),
-                    guide(2.0, ""),
-                    guide(-2.0, ""),
-                ],
-                markers: vec![Markers {
-                    label: "residual".into(),
-                    colors: vec![PALETTE[0]; points.len()],
-                    points,
-                    legend_color: PALETTE[0],
-                    marker: Marker::Disc,
-                }],
-                vlines: vec![],
-                legend: LegendAt::UpperRight,
-            }
-        })
-        .collect::<Vec<_>>();
-    Figure {
-        size: (620 * panels.len() as u32, 480),
-        panels,
-    }
-}
-
 /// `polbrdf fit --per-wavelength`: one fit per wavelength of the data.
 fn run_per_wavelength(
     args: &Args<'_>,
@@ -412,7 +234,7 @@ fn run_per_wavelength(
                     r.reduced_chi2,
                     if r.converged { "" } else { "  NOT CONVERGED" }
                 );
-                let mut v = to_json(r, args.data);
+                let mut v = polbrdf_tasks::fit::to_json(r, args.data);
                 v["wavelength_um"] = Value::from(f.wavelength_um);
                 entries.push(v);
             }

@@ -2,7 +2,7 @@
 //! 0 success, 1 internal error, 2 usage error, 3 invalid input data, 4 I/O failure, 5 fit did
 //! not converge.
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::path::PathBuf;
 
 mod albedo;
@@ -23,6 +23,7 @@ mod measured;
 mod output;
 mod radiance;
 mod reproduce;
+mod residuals;
 mod spectrum;
 mod sweep;
 mod view;
@@ -211,14 +212,17 @@ fn main() -> ExitCode {
         ));
         std::process::exit(1);
     }));
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
+    let parsed = Cli::command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m).map(|cli| (m, cli)));
+    let (matches, cli) = match parsed {
+        Ok(parsed) => parsed,
         Err(e) => {
             let _ = e.print();
             return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
         }
     };
-    match run(cli) {
+    match checked_run(&matches, cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if e.is_broken_pipe() => ExitCode::from(141),
         Err(e) => {
@@ -226,6 +230,15 @@ fn main() -> ExitCode {
             ExitCode::from(e.exit_code())
         }
     }
+}
+
+/// Runs the command after the output layer's checks of its path options
+/// ([`output::check_paths`]).
+fn checked_run(matches: &clap::ArgMatches, cli: Cli) -> Result<(), CliError> {
+    if let Some((name, m)) = matches.subcommand() {
+        output::check_paths(name, m)?;
+    }
+    run(cli)
 }
 
 fn run(cli: Cli) -> Result<(), CliError> {
@@ -248,20 +261,27 @@ fn run(cli: Cli) -> Result<(), CliError> {
             index_out,
             subsample,
             exclude_inadmissible,
-        } => fit::run(&fit::Args {
-            material: &material,
-            data: &data,
-            free: &free,
-            output: output.as_deref(),
-            material_out: material_out.as_deref(),
-            starts,
-            seed,
-            plot: plot.as_deref(),
-            per_wavelength,
-            index_out: index_out.as_deref(),
-            subsample,
-            exclude_inadmissible,
-        }),
+        } => {
+            let args = fit::Args {
+                material: &material,
+                data: &data,
+                free: &free,
+                output: output.as_deref(),
+                material_out: material_out.as_deref(),
+                starts,
+                seed,
+                plot: plot.as_deref(),
+                per_wavelength,
+                index_out: index_out.as_deref(),
+                subsample,
+                exclude_inadmissible,
+            };
+            if polbrdf_tasks::pbsdf::is_pbsdf(&data) {
+                measured::run(&args)
+            } else {
+                fit::run(&args)
+            }
+        }
         Command::Reproduce { out } => reproduce::run(&out),
         Command::Check {
             material,
@@ -278,5 +298,197 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Lut { config, out } => lut::run(&config, &out),
         Command::Spectrum(args) => sweep::run(&args),
         Command::Export(args) => export::run(&args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use output::{Role, PATH_OPTIONS};
+    use std::path::Path;
+
+    /// Options taking a material file or preset name (a `String`, which may name a file).
+    const MATERIAL_IDS: [&str; 3] = ["material", "target", "background"];
+
+    /// Every path option of every command (from the clap definitions) is classified in
+    /// [`PATH_OPTIONS`], and every entry there exists.
+    #[test]
+    fn every_path_option_of_every_command_is_classified() {
+        let cli = Cli::command();
+        let mut seen = Vec::new();
+        for sub in cli.get_subcommands() {
+            for arg in sub.get_arguments() {
+                let id = arg.get_id().as_str();
+                let is_path = arg.get_value_parser().type_id() == std::any::TypeId::of::<PathBuf>();
+                if !(is_path || MATERIAL_IDS.contains(&id)) {
+                    continue;
+                }
+                let name = sub.get_name();
+                assert!(
+                    PATH_OPTIONS.iter().any(|(c, i, _)| *c == name && *i == id),
+                    "`polbrdf {name} --{id}` names a path: classify it in output::PATH_OPTIONS \
+                     (input, file or directory output) so the output layer checks it"
+                );
+                seen.push((name.to_string(), id.to_string()));
+            }
+        }
+        for (c, i, _) in PATH_OPTIONS {
+            assert!(
+                seen.iter().any(|(sc, si)| sc == c && si == i),
+                "output::PATH_OPTIONS lists `{c} --{i}`, which no command has"
+            );
+        }
+    }
+
+    /// A command line of `command` that writes its option `id` to `{X}`, with the material
+    /// file `{m}` as an input (None when the test lacks one: the test then fails).
+    fn template(command: &str, id: &str) -> Option<Vec<&'static str>> {
+        let v: &[&str] = match (command, id) {
+            ("eval", "output") => &[
+                "eval",
+                "--material",
+                "{m}",
+                "--input",
+                "{g}",
+                "--output",
+                "{X}",
+            ],
+            ("fit", "output") => &[
+                "fit",
+                "--material",
+                "{m}",
+                "--data",
+                "{f}",
+                "--free",
+                "rho_d",
+                "--output",
+                "{X}",
+            ],
+            ("fit", "material_out") => &[
+                "fit",
+                "--material",
+                "{m}",
+                "--data",
+                "{f}",
+                "--free",
+                "rho_d",
+                "--material-out",
+                "{X}",
+            ],
+            ("fit", "plot") => &[
+                "fit",
+                "--material",
+                "{m}",
+                "--data",
+                "{f}",
+                "--free",
+                "rho_d",
+                "--plot",
+                "{X}",
+            ],
+            ("fit", "index_out") => &[
+                "fit",
+                "--material",
+                "{m}",
+                "--data",
+                "{f}",
+                "--free",
+                "n",
+                "--per-wavelength",
+                "--index-out",
+                "{X}",
+            ],
+            ("reproduce", "out") => &["reproduce", "--out", "{X}"],
+            ("contrast", "out") => &[
+                "contrast",
+                "--target",
+                "{m}",
+                "--background",
+                "paint",
+                "--sun-zenith-deg",
+                "30",
+                "--out",
+                "{X}",
+            ],
+            ("albedo", "output") => &["albedo", "--material", "{m}", "--output", "{X}"],
+            ("emission", "output") => &["emission", "--material", "{m}", "--output", "{X}"],
+            ("radiance", "output") => &[
+                "radiance",
+                "--material",
+                "{m}",
+                "--scene",
+                "{s}",
+                "--output",
+                "{X}",
+            ],
+            ("map", "out") => &[
+                "map",
+                "--material",
+                "{m}",
+                "--sun-zenith-deg",
+                "30",
+                "--out",
+                "{X}",
+            ],
+            ("spectrum", "out") => &["spectrum", "--material", "{m}", "--out", "{X}"],
+            ("lut", "out") => &["lut", "--config", "{m}", "--out", "{X}"],
+            ("export", "out") => &["export", "--material", "{m}", "--out", "{X}"],
+            _ => return None,
+        };
+        Some(v.to_vec())
+    }
+
+    /// Every output option, pointed at an input file, is refused before anything is written,
+    /// and the input is left as it was.
+    #[test]
+    fn every_output_option_refuses_to_replace_an_input() {
+        let dir = tempfile::tempdir().unwrap();
+        let m = dir.path().join("m.toml");
+        let material = polbrdf_io::material_to_toml(&polbrdf::preset("paint").unwrap());
+        let files = [
+            ("{m}", m.clone(), material.clone()),
+            ("{g}", dir.path().join("g.csv"), "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,180\n".into()),
+            ("{f}", dir.path().join("f.csv"), "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf,wavelength_um\n30,0,30,180,1,0.5\n".into()),
+            ("{s}", dir.path().join("s.toml"), "wavelength_um = 10\n[surface]\ntemperature_k = 300\n".into()),
+        ];
+        for (_, path, text) in &files {
+            std::fs::write(path, text).unwrap();
+        }
+        for (command, id, role) in PATH_OPTIONS {
+            if *role == Role::Input {
+                continue;
+            }
+            let Some(args) = template(command, id) else {
+                panic!(
+                    "no test command line for `polbrdf {command} --{id}`: add one to template()"
+                );
+            };
+            let args: Vec<String> = std::iter::once("polbrdf")
+                .chain(args)
+                .map(|a| {
+                    let a = a.replace("{X}", "{m}");
+                    files
+                        .iter()
+                        .find(|(k, ..)| *k == a)
+                        .map_or(a.clone(), |(_, p, _)| p.display().to_string())
+                })
+                .collect();
+            let matches = Cli::command().try_get_matches_from(&args).unwrap();
+            let cli = Cli::from_arg_matches(&matches).unwrap();
+            let e = checked_run(&matches, cli).expect_err(&args.join(" "));
+            let text = e.to_string();
+            assert!(
+                text.contains("same file as the input") || text.contains("not a directory"),
+                "{}: {text}",
+                args.join(" ")
+            );
+            assert_eq!(
+                std::fs::read_to_string(&m).unwrap(),
+                material,
+                "{}",
+                args.join(" ")
+            );
+            assert!(Path::new(&m).is_file());
+        }
     }
 }

@@ -7,6 +7,8 @@ use crate::common::{polbrdf, stderr};
 use std::path::Path;
 
 const GEO: &str = "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n30,0,30,180\n";
+/// A valid material file.
+const MAT: &str = "n = 1.5\nk = 0\nsigma_deg = 10\nrho_d = 0.02\nrho_v = 0.01\n";
 const MEAS: &str = "theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg,brdf\n20,0,20,180,1.0\n30,0,30,180,0.5\n40,0,40,180,0.4\n50,0,50,180,0.5\n";
 
 struct Case {
@@ -550,6 +552,11 @@ fn table_common() -> Vec<Case> {
         radiance_scene("scene wavelength 0", "wavelength_um = 0\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "> 0"]),
         radiance_scene("scene wavelength negative", "wavelength_um = -3\n", vec![], 3, &["s.toml:1", "`wavelength_um`", "-3"]),
         radiance_scene("scene wavelength and band", "wavelength_um = 10\n[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:1", "`wavelength_um`", "[band]", "line 2", "not both"]),
+        // Issue 35: files named inside a scene or a material are inputs the output must not
+        // replace (before, `radiance --output <the scene's band file>` replaced it).
+        case("radiance output = the scene's band file", vec![("s.toml", t("[band]\nresponse = \"b.csv\"\n[surface]\ntemperature_k = 300\n")), ("b.csv", t(LWIR))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/b.csv"], 3, &["b.csv", "same file as the input"]),
+        case("radiance output = the scene's sky profile", vec![("s.toml", t("wavelength_um = 10\n[surface]\ntemperature_k = 300\n[sky]\nmodel = \"profile\"\nfile = \"p.csv\"\n")), ("p.csv", t("zenith_deg,radiance\n0,1\n90,2\n"))], &["radiance", "--material", "paint", "--scene", "{d}/s.toml", "--output", "{d}/p.csv"], 3, &["p.csv", "same file as the input"]),
+        case("eval output = the material's index file", vec![("m.toml", t("index = \"y.yml\"\nsigma_deg = 5\n")), ("y.yml", t(YML)), ("g.csv", t(GEO_WL))], &["eval", "--material", "{d}/m.toml", "--input", "{d}/g.csv", "--output", "{d}/y.yml"], 3, &["y.yml", "same file as the input"]),
         radiance_scene("scene without spectrum", "[surface]\ntemperature_k = 300\n", vec![], 3, &["s.toml", "no spectrum", "wavelength_um", "[band]"]),
         radiance_scene("band without response", "[band]\nstep_um = 0.1\n", vec![], 3, &["s.toml:1", "`band`", "response"]),
         radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
@@ -647,6 +654,11 @@ fn table_common() -> Vec<Case> {
         // Found by the lut_config fuzz target: the toml crate's message for a control character is empty.
         lut_config("lut: control character", "\r\u{0}\u{0}x = 1\n", 3, &["l.toml:4", "invalid character '\\r'", "control characters"]),
         lut_config("lut: control character in a comment", "# a \u{7} bell\n", 3, &["l.toml:4", "invalid character '\\u{7}'"]),
+        // Issue 35: an azimuth beyond ±1e8° is named with its file, line and key, in degrees
+        // (it reached the engine and was reported in radians as `phi_r`); an axis of 10⁷
+        // points (1 GB of attrs.json) is refused.
+        lut_config("lut: dphi 1e9", "theta_r_deg = [0, 30]\ndphi_deg = [0, 1e9]\n", 3, &["l.toml:5", "dphi_deg", "element 1 = 1000000000", "±1e8°"]),
+        lut_config("lut: axis of 10⁷ points", "theta_r_deg = [0, 30]\ndphi_deg = { start = 0, stop = 1, count = 10000000 }\n", 3, &["l.toml:5", "dphi_deg", "`count` = 10000000", "expected 1 to 100000"]),
         lut_config("lut: unknown key", &format!("{LUT_AXES}colour = 3\n"), 3, &["l.toml:6", "`colour`", "unknown key"]),
         lut_config("lut: missing axis", "theta_r_deg = [0]\n", 3, &["l.toml", "missing key `dphi_deg`"]),
         lut_config("lut: axis not increasing", "theta_r_deg = [30, 0]\ndphi_deg = [180]\n", 3, &["l.toml:4", "`theta_r_deg`", "strictly increasing"]),
@@ -656,7 +668,7 @@ fn table_common() -> Vec<Case> {
         lut_config("lut: range of count 0", "theta_r_deg = [0]\ndphi_deg = { start = 0, stop = 180, count = 0 }\n", 3, &["l.toml:5", "`dphi_deg`", "`count` = 0"]),
         lut_config("lut: range with an unknown key", "theta_r_deg = [0]\ndphi_deg = { start = 0, stop = 180, step = 10 }\n", 3, &["l.toml:5", "unknown key `step`"]),
         lut_config("lut: unknown quantity", &format!("{LUT_AXES}quantities = [\"dop\"]\n"), 3, &["l.toml:6", "`quantities`", "unknown quantity `dop`"]),
-        lut_config("lut: too many rows", "theta_r_deg = { start = 0, stop = 90, count = 9000000 }\ndphi_deg = { start = 0, stop = 180, count = 9000000 }\n", 3, &["l.toml", "more than 100000000000 rows"]),
+        case("lut: too many rows", vec![("l.toml", t("materials = [\"paint\"]\nwavelength_um = { start = 0.5, stop = 1, count = 100000 }\ntheta_i_deg = [0, 30]\ntheta_r_deg = { start = 0, stop = 90, count = 100000 }\ndphi_deg = { start = 0, stop = 180, count = 100000 }\n"))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml", "more than 100000000000 rows"]),
         case("lut: unknown material", vec![("l.toml", t(&format!("materials = [\"nope\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:1", "`materials`", "nope"]),
         case("lut: two materials of one name", vec![("l.toml", t(&format!("materials = [\"paint\", \"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:1", "two materials are named `paint`"]),
         case("lut: wavelength outside a spectral index", vec![("m.toml", t(SPECTRAL)), ("l.toml", t(&format!("materials = [\"m.toml\"]\nwavelength_um = [0.6, 50]\ntheta_i_deg = [0]\n{LUT_AXES}")))], &["lut", "--config", "{d}/l.toml", "--out", "{d}/out"], 3, &["l.toml:2", "`wavelength_um`", "element 1 = 50", "outside"]),
@@ -710,13 +722,28 @@ fn table_common() -> Vec<Case> {
         fit_pbsdf("pbsdf: offset past the end", { let mut b = pbsdf(|_| {}); let at = 18 + 2 + 5 + 2 + 1; b[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes()); b }, &["t.pbsdf", "field `phi_d`", "runs past the end"]),
         fit_pbsdf("pbsdf: overlapping fields", { let mut b = pbsdf(|_| {}); let first = 18 + 2 + 5 + 2 + 1; let second = first + 8 + 16 + 2 + 7 + 2 + 1; let v = b[first..first + 8].to_vec(); b[second..second + 8].copy_from_slice(&v); b }, &["t.pbsdf", "overlaps field"]),
         fit_pbsdf("pbsdf: shape overflow", pbsdf(|f| { f[4].2 = vec![u64::MAX, 3, 3, 5, 4, 4]; }), &["t.pbsdf", "field `M`", "overflows"]),
-        case("pbsdf: --subsample 0", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--subsample", "0", "--output", "{d}/out.json"], 3, &["--subsample 0"]),
+        case("pbsdf: --subsample 0", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--subsample", "0", "--output", "{d}/out.json"], 3, &["--subsample", "stride must be ≥ 1"]),
         case("pbsdf: --per-wavelength", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--per-wavelength", "--output", "{d}/out.json"], 2, &["per band already"]),
-        export("export: four bands", &["--bands", "450,500,550,600"], 3, &["--bands", "4 band(s)", "exactly five"]),
-        export("export: bands not increasing", &["--bands", "450,500,500,600,650"], 3, &["--bands", "increase"]),
-        export("export: band not a number", &["--bands", "450,green,550,600,650"], 3, &["--bands", "`green`"]),
+        export("export: four bands", &["--bands-nm", "450,500,550,600"], 3, &["--bands", "4 band(s)", "exactly five"]),
+        export("export: bands not increasing", &["--bands-nm", "450,500,500,600,650"], 3, &["--bands", "increase"]),
+        export("export: band not a number", &["--bands-nm", "450,green,550,600,650"], 3, &["--bands", "`green`"]),
         export("export: grid of two numbers", &["--grid", "37,46"], 3, &["--grid", "three node counts"]),
         export("export: grid of one node", &["--grid", "1,46,91"], 3, &["--grid", "2–4096"]),
+        // Issue 35: the option is named for its unit (nm, where every other option is in µm).
+        export("export: --bands renamed --bands-nm", &["--bands", "450,500,550,600,650"], 2, &["--bands", "--bands-nm"]),
+        // Issue 35: the table's size is bounded (4 GiB) and checked before anything is computed.
+        export("export: 4096³ grid", &["--grid", "4096,4096,4096"], 2, &["--grid 4096,4096,4096", "21990.2 GB", "at most 4294967296 bytes"]),
+        export("export: 2×4096×4096 grid", &["--grid", "2,4096,4096"], 2, &["--grid", "10.7 GB", "at most"]),
+        case("export: the material file as the output", vec![("m.toml", t(MAT))], &["export", "--material", "{d}/m.toml", "--grid", "3,3,3", "--out", "{d}/m.toml"], 3, &["m.toml", "same file as the input"]),
+        // Issue 35: --starts is checked before the table is read (here, a table that is no
+        // TensorFile at all).
+        case("pbsdf: --starts 10001 before the table", vec![("t.pbsdf", t("not a table"))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--starts", "10001", "--output", "{d}/out.json"], 2, &["--starts", "at most 10000"]),
+        // Issue 35: the per-band plot names are checked against the inputs, the other outputs
+        // and each other before anything is written.
+        case("pbsdf: band plot over fit.json", vec![("t.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/p.png", "--output", "{d}/p_500nm.png"], 3, &["p_500nm.png", "same file as the output"]),
+        case("pbsdf: band plot over the material", vec![("t.pbsdf", pbsdf(|_| {})), ("m_450nm.toml", t(MAT))], &["fit", "--material", "{d}/m_450nm.toml", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/m.toml", "--output", "{d}/out.json"], 3, &["m_450nm.toml", "same file as the input"]),
+        case("pbsdf: band plot over the table", vec![("t_450nm.pbsdf", pbsdf(|_| {}))], &["fit", "--material", "paint", "--data", "{d}/t_450nm.pbsdf", "--free", "n", "--plot", "{d}/t.pbsdf", "--output", "{d}/out.json"], 3, &["t_450nm.pbsdf", "same file as the input"]),
+        case("pbsdf: repeated band wavelengths", vec![("t.pbsdf", pbsdf(|f| f[3].3 = [450u16, 450, 550, 600, 650].iter().flat_map(|x| x.to_le_bytes()).collect()))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/p.svg", "--output", "{d}/out.json"], 3, &["p_450nm.svg", "same file as the output"]),
         case("export: unknown material", vec![], &["export", "--material", "nope", "--out", "{d}/out.json"], 3, &["nope"]),
         case("export: directory missing", vec![], &["export", "--material", "paint", "--grid", "3,3,3", "--out", "{d}/no/out.pbsdf"], 4, &["out.pbsdf", "cannot write"]),
         // Usage errors (clap).

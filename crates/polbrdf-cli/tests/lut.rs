@@ -99,3 +99,44 @@ fn the_table_is_eval_at_every_grid_point() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// Issue 35: staging directories left by killed runs (`.polbrdf-<pid>-<random>.tmp/`, and the
+/// old `.polbrdf-<name>.partial-<pid>-<n>/`) are removed by the next `lut` writing next to them
+/// when their process is gone; those of a running process are kept.
+#[cfg(unix)]
+#[test]
+fn a_later_run_removes_the_staging_directories_of_killed_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    let dead = child.id();
+    child.wait().unwrap();
+    let stale = [
+        format!(".polbrdf-lut.partial-{dead}-0"),
+        format!(".polbrdf-{dead}-0123456789abcdef.tmp"),
+    ];
+    let live = format!(".polbrdf-lut.partial-{}-0", std::process::id());
+    for name in stale.iter().chain([&live]) {
+        std::fs::create_dir(d.join(name)).unwrap();
+        std::fs::write(d.join(name).join("table.npy"), vec![0u8; 1000]).unwrap();
+    }
+    let cfg = write(
+        d,
+        "l.toml",
+        "materials = [\"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0]\ntheta_r_deg = [0]\n\
+         dphi_deg = [180]\n",
+    );
+    let o = polbrdf(&[
+        "lut",
+        "--config",
+        &cfg,
+        "--out",
+        d.join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for name in &stale {
+        assert!(!d.join(name).exists(), "{name} left");
+    }
+    assert!(d.join(&live).is_dir());
+    assert!(d.join("out/table.npy").is_file());
+}

@@ -416,6 +416,42 @@ fn sigterm_leaves_no_temporary() {
     assert!(temporaries(dir.path()).is_empty());
 }
 
+/// Issue 35: a signal during `export` leaves no temporary (the tempfile crate's
+/// `.polbrdf-XXXXXX.tmp` of 7–377 MB stayed), nor the destination.
+#[cfg(unix)]
+#[test]
+fn sigterm_during_export_leaves_no_temporary() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.pbsdf");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+        .args([
+            "export",
+            "--material",
+            "paint",
+            "--grid",
+            "181,91,91",
+            "--out",
+        ])
+        .arg(&out)
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    // SAFETY: signalling our own child.
+    unsafe { libc_kill(child.id() as i32, 15) };
+    let status = child.wait().unwrap();
+    if status.success() {
+        eprintln!("the run ended before the signal: nothing to check");
+    } else {
+        assert!(!out.exists());
+    }
+    assert!(
+        temporaries(dir.path()).is_empty(),
+        "{:?}",
+        temporaries(dir.path())
+    );
+}
+
 #[cfg(unix)]
 unsafe fn libc_kill(pid: i32, sig: i32) {
     extern "C" {
@@ -507,4 +543,124 @@ fn fit_writes_its_files_before_a_closed_standard_output() {
         .unwrap();
     assert!(json.is_file());
     assert_ne!(o.status.code(), Some(134), "aborted");
+}
+
+/// Issue 35: `export` writes through the output layer like every other command: `-` is
+/// standard output, a FIFO is written to its reader, a symlink stays a link, a read-only or
+/// hard-linked file is refused untouched, and the material file is never its output.
+#[cfg(unix)]
+#[test]
+fn export_writes_through_the_output_layer() {
+    use std::os::unix::fs::{FileTypeExt, PermissionsExt};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let export = |out: &str| {
+        Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+            .current_dir(d)
+            .args([
+                "export",
+                "--material",
+                "paint",
+                "--grid",
+                "3,3,3",
+                "--out",
+                out,
+            ])
+            .output()
+            .unwrap()
+    };
+    // `-`: the table on standard output, no file named `-`.
+    let o = export("-");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.stdout.starts_with(b"tensor_file\0"));
+    assert!(!d.join("-").exists());
+    // A symlink: its target written, the link kept.
+    std::fs::write(d.join("real.pbsdf"), "old").unwrap();
+    std::os::unix::fs::symlink("real.pbsdf", d.join("link.pbsdf")).unwrap();
+    let o = export("link.pbsdf");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::symlink_metadata(d.join("link.pbsdf"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read(d.join("real.pbsdf"))
+        .unwrap()
+        .starts_with(b"tensor_file\0"));
+    // Read-only, hard-linked: refused, untouched.
+    let ro = d.join("ro.pbsdf");
+    std::fs::write(&ro, "keep").unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let o = export("ro.pbsdf");
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("read-only"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&ro).unwrap(), "keep");
+    std::fs::write(d.join("a.pbsdf"), "keep").unwrap();
+    std::fs::hard_link(d.join("a.pbsdf"), d.join("b.pbsdf")).unwrap();
+    let o = export("a.pbsdf");
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(stderr(&o).contains("2 hard links"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(d.join("b.pbsdf")).unwrap(), "keep");
+    // A device: written, not replaced.
+    let o = export("/dev/null");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::metadata("/dev/null")
+        .unwrap()
+        .file_type()
+        .is_char_device());
+    // A FIFO: its reader gets the table.
+    let fifo = d.join("pipe");
+    if Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let path = fifo.clone();
+        let reader = std::thread::spawn(move || {
+            let mut b = Vec::new();
+            std::fs::File::open(&path)
+                .unwrap()
+                .read_to_end(&mut b)
+                .unwrap();
+            b
+        });
+        let o = export("pipe");
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(reader.join().unwrap().starts_with(b"tensor_file\0"));
+        assert!(std::fs::metadata(&fifo).unwrap().file_type().is_fifo());
+    }
+    assert!(temporaries(d).is_empty(), "{:?}", temporaries(d));
+}
+
+/// The path checks before a command read the files a scene names, but never standard input:
+/// `--scene -` is read once, by the command.
+#[test]
+fn a_scene_on_standard_input_is_read_by_the_command_only() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("r.csv");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+        .args([
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            "-",
+            "--theta-deg",
+            "30",
+            "--output",
+        ])
+        .arg(&out)
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"wavelength_um = 10\n[surface]\ntemperature_k = 300\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out).unwrap().lines().count(), 2);
 }

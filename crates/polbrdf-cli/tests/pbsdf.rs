@@ -160,7 +160,7 @@ fn inadmissible_cells_are_counted_and_excluded_on_request() {
         &t.theta_d,
         &t.theta_h,
         &t.wavelengths_nm,
-        |p| Ok::<_, String>(slabs[p].clone()),
+        |p, cells| Ok::<_, String>(slabs[p][cells.start * 80..cells.end * 80].to_vec()),
     )
     .unwrap();
     let run = |extra: &[&str]| {
@@ -190,4 +190,141 @@ fn inadmissible_cells_are_counted_and_excluded_on_request() {
     let msg = stderr(&o);
     assert_eq!(o.status.code(), Some(3), "{msg}");
     assert!(msg.contains("excluded"), "{msg}");
+}
+
+/// Issue 35: a sparse file whose header claims 32768 × 32768 cells (68.7 GB of matrices in a
+/// file of 260 KB of data) is fitted within 2 GB of address space: only the kept cells are
+/// read (before, a whole φ_d slab was allocated from the header's claim and the run aborted).
+#[cfg(unix)]
+#[test]
+fn a_fit_reads_only_the_cells_it_keeps() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sparse.pbsdf");
+    let n = 32768u64;
+    let nodes = |k: u64| -> Vec<u8> {
+        (0..k)
+            .flat_map(|i| (1.5 * i as f32 / (k - 1) as f32).to_le_bytes())
+            .collect()
+    };
+    let fields: Vec<(&str, u8, Vec<u64>, Vec<u8>)> = vec![
+        ("phi_d", 10, vec![1, 1], 0f32.to_le_bytes().to_vec()),
+        ("theta_d", 10, vec![1, n], nodes(n)),
+        ("theta_h", 10, vec![1, n], nodes(n)),
+        ("wvls", 3, vec![1], 550u16.to_le_bytes().to_vec()),
+    ];
+    let header: u64 = 18
+        + fields
+            .iter()
+            .map(|f| 2 + f.0.len() as u64 + 3 + 8 + 8 * f.2.len() as u64)
+            .sum::<u64>()
+        + 2
+        + 1
+        + 3
+        + 8
+        + 8 * 6;
+    let mut bytes = b"tensor_file\0\x01\x00".to_vec();
+    bytes.extend(5u32.to_le_bytes());
+    let mut at = header;
+    let m_shape = [1, n, n, 1, 4, 4];
+    let all = fields
+        .iter()
+        .map(|f| (f.0, f.1, f.2.clone(), f.3.len() as u64))
+        .chain([("M", 10, m_shape.to_vec(), n * n * 64)]);
+    for (name, dtype, shape, len) in all {
+        bytes.extend((name.len() as u16).to_le_bytes());
+        bytes.extend(name.as_bytes());
+        bytes.extend((shape.len() as u16).to_le_bytes());
+        bytes.push(dtype);
+        bytes.extend(at.to_le_bytes());
+        for d in shape {
+            bytes.extend(d.to_le_bytes());
+        }
+        at += len;
+    }
+    assert_eq!(bytes.len() as u64, header);
+    for f in &fields {
+        bytes.extend(&f.3);
+    }
+    std::fs::write(&path, &bytes).unwrap();
+    let f = std::fs::OpenOptions::new().write(true).open(&path).unwrap();
+    f.set_len(at).unwrap();
+    drop(f);
+    let out = dir.path().join("fit.json");
+    let o = std::process::Command::new("sh")
+        .args(["-c", "ulimit -v 2000000 && exec \"$0\" \"$@\""])
+        .arg(env!("CARGO_BIN_EXE_polbrdf"))
+        .args([
+            "fit",
+            "--material",
+            "paint",
+            "--free",
+            "n",
+            "--subsample",
+            "4096",
+            "--data",
+        ])
+        .arg(&path)
+        .arg("--output")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let msg = stderr(&o);
+    assert!(
+        o.status.code().is_some_and(|c| c != 1),
+        "{:?}: {msg}",
+        o.status
+    );
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(v["per_band"][0]["table"]["cells"], 64, "{msg}");
+}
+
+/// Standard error closed by its reader (EPIPE on every write).
+fn broken_stderr() -> std::process::Stdio {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    writer.into()
+}
+
+/// Issue 35: a broken standard error costs neither the result nor the exit status of
+/// `export` and of a `.pbsdf` fit (their notes went through a panicking `eprintln!`).
+#[test]
+fn a_broken_standard_error_loses_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let table = d.join("t.pbsdf");
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_polbrdf"))
+            .args(args)
+            .stderr(broken_stderr())
+            .output()
+            .unwrap()
+    };
+    let o = run(&[
+        "export",
+        "--material",
+        "paint",
+        "--grid",
+        "9,12,23",
+        "--out",
+        table.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(PbsdfTable::open(&table).is_ok());
+    let json = d.join("fit.json");
+    let o = run(&[
+        "fit",
+        "--material",
+        "paint",
+        "--data",
+        table.to_str().unwrap(),
+        "--free",
+        "rho_d",
+        "--subsample",
+        "2",
+        "--output",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(v["per_band"].as_array().unwrap().len(), 5);
 }

@@ -36,5 +36,5 @@ pub use refractive::{
 pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
 pub use tensorfile::TensorFile;
 pub use write::{
-    check_distinct, install_signal_cleanup, write_atomic, write_files, Output, Target,
+    check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,
 };

@@ -24,8 +24,9 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::{Spanned, Value};
 
-/// Most values along one axis of a table.
-pub const MAX_AXIS: usize = 10_000_000;
+/// Most values along one axis of a table: every coordinate is written into the table's
+/// `attrs.json` (about 25 bytes a value), so 10⁵ keeps it under ~13 MB (10⁷ cost 1 GB).
+pub const MAX_AXIS: usize = 100_000;
 /// Most materials of a table.
 pub const MAX_MATERIALS: usize = 1000;
 /// Most rows (materials × wavelengths × geometries) of a table.
@@ -372,7 +373,14 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
         wavelength_um: doc.axis("wavelength_um", (|x| x > 0.0, "a wavelength > 0 µm"))?,
         theta_i_deg: doc.axis("theta_i_deg", zenith)?,
         theta_r_deg: doc.axis("theta_r_deg", zenith)?,
-        dphi_deg: doc.axis("dphi_deg", (|_| true, "a finite azimuth difference"))?,
+        dphi_deg: doc.axis(
+            "dphi_deg",
+            (
+                |x| x.abs() <= polbrdf::MAX_AZIMUTH_DEG,
+                "an azimuth difference within ±1e8° (polbrdf::MAX_AZIMUTH_DEG: beyond it the \
+                 angle has no digit left)",
+            ),
+        )?,
         quantities: match doc.found.contains_key("quantities") {
             false => vec![Quantity::Mueller, Quantity::Brdf, Quantity::Dolp],
             true => {
@@ -519,9 +527,9 @@ mod tests {
         let e = parse("materials = [\"paint\"]\n").unwrap_err().to_string();
         assert!(e.contains("missing key `wavelength_um`"), "{e}");
         let e = parse(
-            "materials = [\"paint\"]\nwavelength_um = { start = 0.5, stop = 1, count = 1000000 }\n\
-             theta_i_deg = [0, 30]\ntheta_r_deg = [0, 30]\n\
-             dphi_deg = { start = 0, stop = 1, count = 1000000 }\n",
+            "materials = [\"paint\"]\nwavelength_um = { start = 0.5, stop = 1, count = 100000 }\n\
+             theta_i_deg = { start = 0, stop = 80, count = 100000 }\ntheta_r_deg = [0, 30]\n\
+             dphi_deg = { start = 0, stop = 1, count = 100000 }\n",
         )
         .unwrap_err()
         .to_string();

@@ -227,3 +227,10 @@ pub fn material_to_toml(spec: &MaterialSpec) -> String {
     }
     text
 }
+
+/// The refractive-index file a material names (`index = "FILE.yml"`, recorded by its absolute
+/// path), or `None` for a constant index or a library id: an input an output must not replace.
+pub fn index_file(spec: &MaterialSpec) -> Option<std::path::PathBuf> {
+    let source = &spec.spectral.as_ref()?.source;
+    (!source.starts_with(crate::library::PREFIX)).then(|| std::path::PathBuf::from(source))
+}

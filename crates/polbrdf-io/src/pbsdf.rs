@@ -9,7 +9,17 @@ use crate::tensorfile::{write_tensor_file, Dtype, FieldData, TensorFile};
 use std::io::Write;
 use std::path::Path;
 
-/// An open `.pbsdf` table: its axes; the matrices are read one φ_d slab at a time.
+/// Nodes of an axis, and bands, a table may have: reading the axes costs memory in proportion
+/// to what the header claims (12 bytes a node), so the claim is bounded before anything is
+/// read. Far above any measured table (the KAIST tables have 361 × 91 × 91 nodes, 5 bands).
+pub const MAX_NODES: u64 = 1 << 16;
+
+/// Cells of a slab written per call of the producer of [`write_pbsdf`]: the writer's memory is
+/// bounded by this, not by the grid.
+pub const CELL_BLOCK: usize = 1 << 14;
+
+/// An open `.pbsdf` table: its axes; the matrices are read on demand (one cell or one φ_d
+/// slab at a time).
 #[derive(Debug)]
 pub struct PbsdfTable {
     file: TensorFile,
@@ -48,6 +58,13 @@ impl PbsdfTable {
                     format!("shape {:?} where [1, n ≥ 1] is required", f.shape),
                 ));
             }
+            if f.shape[1] > MAX_NODES {
+                return Err(field_err(
+                    path,
+                    name,
+                    format!("{} nodes: at most {MAX_NODES} are read", f.shape[1]),
+                ));
+            }
             let n = f.shape[1] as usize;
             let v = file.read_f32(name, 0, n)?;
             for (i, &x) in v.iter().enumerate() {
@@ -73,11 +90,14 @@ impl PbsdfTable {
         let theta_d = axis("theta_d", 0.0, pi / 2.0)?;
         let theta_h = axis("theta_h", 0.0, pi / 2.0)?;
         let w = file.field("wvls")?;
-        if w.shape.len() != 1 || w.shape[0] == 0 {
+        if w.shape.len() != 1 || w.shape[0] == 0 || w.shape[0] > MAX_NODES {
             return Err(field_err(
                 path,
                 "wvls",
-                format!("shape {:?} where [n ≥ 1] is required", w.shape),
+                format!(
+                    "shape {:?} where [n] with 1 ≤ n ≤ {MAX_NODES} is required",
+                    w.shape
+                ),
             ));
         }
         let wavelengths_nm = file.read_u16_all("wvls")?;
@@ -117,7 +137,8 @@ impl PbsdfTable {
         self.theta_d.len() * self.theta_h.len() * self.wavelengths_nm.len() * 16
     }
 
-    /// Reads the slab of φ_d node `p` (C order `[theta_d, theta_h, wvls, 4, 4]`) into `out`.
+    /// Reads the slab of φ_d node `p` (C order `[theta_d, theta_h, wvls, 4, 4]`) into `out`: the
+    /// whole slab in memory (a caller that needs a few cells reads them by [`Self::read_cell`]).
     ///
     /// # Errors
     /// [`Error::Read`].
@@ -132,20 +153,49 @@ impl PbsdfTable {
         );
         Ok(())
     }
+
+    /// Reads the 16 entries (row-major, plane-of-reflection frame) of cell `(p, d, h)` at band
+    /// `band`: 64 bytes, whatever the table's size.
+    ///
+    /// # Errors
+    /// [`Error::Read`]; [`Error::File`] when the cell is outside the table.
+    pub fn read_cell(&mut self, p: usize, d: usize, h: usize, band: usize) -> Result<[f32; 16]> {
+        let (nd, nh, nb) = (
+            self.theta_d.len(),
+            self.theta_h.len(),
+            self.wavelengths_nm.len(),
+        );
+        if p >= self.phi_d.len() || d >= nd || h >= nh || band >= nb {
+            return Err(field_err(
+                self.file.path(),
+                "M",
+                format!("cell ({p}, {d}, {h}) band {band} is outside the table"),
+            ));
+        }
+        let at = ((((p * nd + d) * nh + h) * nb + band) * 16) as u64;
+        let mut b = [0u8; 64];
+        self.file.read_bytes("M", at, &mut b)?;
+        Ok(std::array::from_fn(|k| {
+            f32::from_le_bytes(b[4 * k..4 * k + 4].try_into().expect("4 bytes"))
+        }))
+    }
 }
 
-/// Writes a `.pbsdf` table atomically: the axes and `slab(p)`, which returns the slab of φ_d
-/// node `p` (C order `[theta_d, theta_h, wvls, 4, 4]`), streamed one slab at a time.
+/// Writes a `.pbsdf` table through the output layer ([`crate::Output`]): the axes, then
+/// `cells(p, range)`, which returns the cells `range` (indices `d · n_theta_h + h`) of the slab
+/// of φ_d node `p` (C order `[cell, wvls, 4, 4]`), streamed in blocks of at most
+/// [`CELL_BLOCK`] cells.
 ///
 /// # Errors
-/// [`Error::Write`]; an error of `slab` aborts the write and is returned.
+/// As [`crate::Output::create`]; [`Error::Write`]; an error of `cells` aborts the write and is
+/// returned.
 pub fn write_pbsdf<E: std::fmt::Display>(
     path: &Path,
     phi_d: &[f64],
     theta_d: &[f64],
     theta_h: &[f64],
     wavelengths_nm: &[u16],
-    mut slab: impl FnMut(usize) -> std::result::Result<Vec<f32>, E>,
+    mut cells: impl FnMut(usize, std::ops::Range<usize>) -> std::result::Result<Vec<f32>, E>,
 ) -> Result<()> {
     let f32s =
         |v: &[f64]| -> Vec<u8> { v.iter().flat_map(|&x| (x as f32).to_le_bytes()).collect() };
@@ -163,6 +213,7 @@ pub fn write_pbsdf<E: std::fmt::Display>(
         .flat_map(|x| x.to_le_bytes())
         .collect();
     let n_phi = phi_d.len();
+    let n_cells = theta_d.len() * theta_h.len();
     let shape = vec![
         n_phi as u64,
         theta_d.len() as u64,
@@ -187,9 +238,13 @@ pub fn write_pbsdf<E: std::fmt::Display>(
             shape,
             write: Box::new(move |w: &mut dyn Write| {
                 for p in 0..n_phi {
-                    let s = slab(p).map_err(|e| std::io::Error::other(e.to_string()))?;
-                    let bytes: Vec<u8> = s.iter().flat_map(|x| x.to_le_bytes()).collect();
-                    w.write_all(&bytes)?;
+                    for start in (0..n_cells).step_by(CELL_BLOCK) {
+                        let range = start..n_cells.min(start + CELL_BLOCK);
+                        let s =
+                            cells(p, range).map_err(|e| std::io::Error::other(e.to_string()))?;
+                        let bytes: Vec<u8> = s.iter().flat_map(|x| x.to_le_bytes()).collect();
+                        w.write_all(&bytes)?;
+                    }
                 }
                 Ok(())
             }),

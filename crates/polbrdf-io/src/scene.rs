@@ -93,6 +93,9 @@ pub struct Scene {
     pub target: SceneObject,
     /// `[background]`.
     pub background: SceneObject,
+    /// Every file the scene names, as resolved (band, sky table, sky profile, material files
+    /// and the index files these name): inputs an output must not replace.
+    pub files: Vec<PathBuf>,
 }
 
 /// What a key holds.
@@ -388,6 +391,8 @@ struct Doc<'a> {
     /// Every key given, by its dotted name: its line and its value (tables: an empty table,
     /// their line that of their header).
     found: BTreeMap<&'static str, (usize, Value)>,
+    /// The files read so far (see [`Scene::files`]).
+    files: std::cell::RefCell<Vec<PathBuf>>,
 }
 
 impl<'a> Doc<'a> {
@@ -397,6 +402,7 @@ impl<'a> Doc<'a> {
             path,
             folder: path.parent().filter(|p| !p.as_os_str().is_empty()),
             found: BTreeMap::new(),
+            files: std::cell::RefCell::new(Vec::new()),
         };
         let top: SpannedTable = toml::from_str(text).map_err(|e| doc.syntax(e, text, text))?;
         // The top level, in file order. Then the tables' keys: `toml::Value` keeps no position
@@ -625,7 +631,9 @@ impl<'a> Doc<'a> {
         if name.is_empty() {
             return Err(self.error(key, "expected the path of a file, got an empty string"));
         }
-        read(&self.resolve(name))
+        let file = self.resolve(name);
+        self.files.borrow_mut().push(file.clone());
+        read(&file)
             .map(Some)
             .map_err(|e| self.error(key, e.to_string()))
     }
@@ -776,6 +784,7 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
     // [`load_material`]: a file named like a preset never shadows it).
     let spec = if crate::material::names_a_file(arg) {
         let file = doc.resolve(arg);
+        doc.files.borrow_mut().push(file.clone());
         match file.to_str() {
             Some(f) if crate::material::names_a_file(f) => load_material(f),
             Some(f) => load_material(&format!("./{f}")),
@@ -788,6 +797,9 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
         load_material(arg)
     }
     .map_err(|e| doc.error(key, e.to_string()))?;
+    doc.files
+        .borrow_mut()
+        .extend(crate::material::index_file(&spec));
     let name = spec.name.clone().unwrap_or_else(|| {
         Path::new(arg)
             .file_stem()
@@ -1009,12 +1021,15 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
         sun,
     };
     thermal.validate().map_err(|e| doc.core_error(e))?;
+    let target = object(&doc, &TARGET)?;
+    let background = object(&doc, &BACKGROUND)?;
     Ok(Scene {
         path: path.to_path_buf(),
         spectrum,
         thermal,
-        target: object(&doc, &TARGET)?,
-        background: object(&doc, &BACKGROUND)?,
+        target,
+        background,
+        files: doc.files.take(),
     })
 }
 

@@ -9,7 +9,7 @@
 
 use crate::error::{Error, Result};
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Read, Seek, SeekFrom, Write};
+use std::io::{BufReader, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 /// The file's first 12 bytes.
@@ -466,16 +466,14 @@ pub struct FieldData<'a> {
     pub write: Producer<'a>,
 }
 
-/// Writes a TensorFile atomically (temporary file in the destination's directory, then rename;
-/// like [`crate::write_atomic`]), streaming each field's data. Data offsets are aligned to 8.
+/// Writes a TensorFile through the output layer ([`crate::Output`]: a regular file atomically,
+/// a device or FIFO directly, `-` to standard output; a read-only or hard-linked file is refused),
+/// streaming each field's data in order (no seek). Data offsets are aligned to 8.
 ///
 /// # Errors
-/// [`Error::Write`] naming `path`; on error nothing changes at `path`.
+/// As [`crate::Output::create`]; [`Error::Write`] naming `path`. On error nothing changes at a
+/// regular `path`.
 pub fn write_tensor_file(path: &Path, fields: Vec<FieldData<'_>>) -> Result<()> {
-    let err = |source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    };
     let mut header_len: u64 = 12 + 2 + 4;
     for f in &fields {
         header_len += 2 + f.name.len() as u64 + 2 + 1 + 8 + 8 * f.shape.len() as u64;
@@ -487,72 +485,56 @@ pub fn write_tensor_file(path: &Path, fields: Vec<FieldData<'_>>) -> Result<()> 
         offsets.push(at);
         at = align(at + f.shape.iter().product::<u64>() * f.dtype.size());
     }
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let tmp = tempfile::Builder::new()
-        .prefix(".polbrdf-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(err)?;
-    let mut w = BufWriter::with_capacity(1 << 20, tmp.as_file());
-    let mut pos: u64 = 0;
-    let put = |w: &mut BufWriter<&File>, b: &[u8], pos: &mut u64| {
-        *pos += b.len() as u64;
-        w.write_all(b)
-    };
-    put(&mut w, MAGIC, &mut pos).map_err(err)?;
-    put(&mut w, &[1, 0], &mut pos).map_err(err)?;
-    put(&mut w, &(fields.len() as u32).to_le_bytes(), &mut pos).map_err(err)?;
-    for (f, off) in fields.iter().zip(&offsets) {
-        put(&mut w, &(f.name.len() as u16).to_le_bytes(), &mut pos).map_err(err)?;
-        put(&mut w, f.name.as_bytes(), &mut pos).map_err(err)?;
-        put(&mut w, &(f.shape.len() as u16).to_le_bytes(), &mut pos).map_err(err)?;
-        put(&mut w, &[f.dtype.code()], &mut pos).map_err(err)?;
-        put(&mut w, &off.to_le_bytes(), &mut pos).map_err(err)?;
+    let mut out = crate::write::Output::create(path)?;
+    let written = write_fields(&mut out, fields, &offsets);
+    written.map_err(|e| out.error(e))?;
+    out.commit()
+}
+
+/// The header and the data of `fields` (at `offsets`) into `w`.
+fn write_fields(
+    w: &mut dyn Write,
+    fields: Vec<FieldData<'_>>,
+    offsets: &[u64],
+) -> std::io::Result<()> {
+    let mut head: Vec<u8> = Vec::new();
+    head.extend_from_slice(MAGIC);
+    head.extend_from_slice(&[1, 0]);
+    head.extend_from_slice(&(fields.len() as u32).to_le_bytes());
+    for (f, off) in fields.iter().zip(offsets) {
+        head.extend_from_slice(&(f.name.len() as u16).to_le_bytes());
+        head.extend_from_slice(f.name.as_bytes());
+        head.extend_from_slice(&(f.shape.len() as u16).to_le_bytes());
+        head.push(f.dtype.code());
+        head.extend_from_slice(&off.to_le_bytes());
         for d in &f.shape {
-            put(&mut w, &d.to_le_bytes(), &mut pos).map_err(err)?;
+            head.extend_from_slice(&d.to_le_bytes());
         }
     }
-    for (mut f, off) in fields.into_iter().zip(offsets) {
-        let pad = vec![0u8; (off - pos) as usize];
-        put(&mut w, &pad, &mut pos).map_err(err)?;
+    w.write_all(&head)?;
+    let mut pos = head.len() as u64;
+    for (mut f, &off) in fields.into_iter().zip(offsets) {
+        w.write_all(&vec![0u8; (off - pos) as usize])?;
         let expected = f.shape.iter().product::<u64>() * f.dtype.size();
-        let mut counter = Counting {
-            inner: &mut w,
-            n: 0,
-        };
-        (f.write)(&mut counter).map_err(err)?;
+        let mut counter = Counting { inner: w, n: 0 };
+        (f.write)(&mut counter)?;
         if counter.n != expected {
-            return Err(err(std::io::Error::other(format!(
+            return Err(std::io::Error::other(format!(
                 "field `{}`: {} bytes produced, {} expected",
                 f.name, counter.n, expected
-            ))));
+            )));
         }
-        pos += expected;
+        pos = off + expected;
     }
-    w.flush().map_err(err)?;
-    drop(w);
-    tmp.as_file().sync_all().map_err(err)?;
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode());
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(mode))
-            .map_err(err)?;
-    }
-    tmp.persist(path).map_err(|e| err(e.error))?;
     Ok(())
 }
 
-struct Counting<'a, W: Write> {
+struct Counting<'a, W: Write + ?Sized> {
     inner: &'a mut W,
     n: u64,
 }
 
-impl<W: Write> Write for Counting<'_, W> {
+impl<W: Write + ?Sized> Write for Counting<'_, W> {
     fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
         let k = self.inner.write(b)?;
         self.n += k as u64;

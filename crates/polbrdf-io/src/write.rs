@@ -209,9 +209,10 @@ fn alive(pid: i32) -> bool {
     r == 0 || std::io::Error::last_os_error().raw_os_error() != Some(libc::ESRCH)
 }
 
-/// Removes temporaries a killed run left in `dir`: `.polbrdf-<pid>-*.tmp` whose pid is not
-/// running, and (the older naming, `.polbrdf-XXXXXX.tmp`, without a pid) those untouched for
-/// an hour.
+/// Removes temporaries a killed run left in `dir`: `.polbrdf-<pid>-*.tmp` (files, or staging
+/// directories) whose pid is not running; `lut`'s old staging directories
+/// `.polbrdf-<name>.partial-<pid>-<n>` whose pid is not running; and (the older naming,
+/// `.polbrdf-XXXXXX.tmp`, without a pid) those untouched for an hour.
 pub fn clean_stale_temporaries(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
@@ -223,6 +224,19 @@ pub fn clean_stale_temporaries(dir: &Path) {
             continue;
         };
         let Some(stem) = rest.strip_suffix(".tmp") else {
+            // The staging directories of `polbrdf lut` before 0.2: `.polbrdf-<name>.partial-<pid>-<n>`.
+            #[cfg(unix)]
+            if let Some((_, tail)) = rest.rsplit_once(".partial-") {
+                let dead = tail.split_once('-').is_some_and(|(pid, n)| {
+                    n.parse::<u32>().is_ok()
+                        && pid.parse::<i32>().is_ok_and(|pid| {
+                            pid > 0 && pid != std::process::id() as i32 && !alive(pid)
+                        })
+                });
+                if dead && e.path().is_dir() {
+                    let _ = std::fs::remove_dir_all(e.path());
+                }
+            }
             continue;
         };
         let stale = match stem.split_once('-') {
@@ -684,4 +698,73 @@ pub fn check_distinct(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
         outs.push((out, id));
     }
     Ok(())
+}
+
+/// A new directory staged next to its destination as `.polbrdf-<pid>-<random>.tmp` (registered
+/// for removal on SIGINT/SIGTERM/SIGHUP; a later run removes it if this process was killed),
+/// filled by the caller, then renamed into place by [`StagingDir::commit`]. Dropped without
+/// commit, it is removed. For outputs too large to hold in memory ([`write_files`] holds its
+/// files' bytes).
+#[derive(Debug)]
+pub struct StagingDir {
+    path: Option<PathBuf>,
+    dest: PathBuf,
+}
+
+impl StagingDir {
+    /// Stages the new directory `dest`, refused when `dest` exists.
+    ///
+    /// # Errors
+    /// [`Error::Write`] naming `dest`.
+    pub fn create(dest: &Path) -> Result<StagingDir> {
+        if std::fs::symlink_metadata(dest).is_ok() {
+            return Err(write_err(
+                dest,
+                std::io::Error::new(
+                    std::io::ErrorKind::AlreadyExists,
+                    "exists: a new directory is written here, never one replaced",
+                ),
+            ));
+        }
+        let parent = dir_of(dest);
+        clean_stale_temporaries(parent);
+        let path = temp_name(parent);
+        register(&path);
+        if let Err(e) = std::fs::create_dir(&path) {
+            unregister(&path);
+            return Err(write_err(dest, e));
+        }
+        Ok(StagingDir {
+            path: Some(path),
+            dest: dest.to_path_buf(),
+        })
+    }
+
+    /// Where to write the files.
+    pub fn path(&self) -> &Path {
+        self.path.as_deref().expect("not committed")
+    }
+
+    /// Moves the staged directory into place.
+    ///
+    /// # Errors
+    /// [`Error::Write`] naming the destination; the staged directory is then removed.
+    pub fn commit(mut self) -> Result<()> {
+        let path = self.path.take().expect("committed once");
+        let r = std::fs::rename(&path, &self.dest);
+        if r.is_err() {
+            let _ = std::fs::remove_dir_all(&path);
+        }
+        unregister(&path);
+        r.map_err(|e| write_err(&self.dest, e))
+    }
+}
+
+impl Drop for StagingDir {
+    fn drop(&mut self) {
+        if let Some(p) = self.path.take() {
+            let _ = std::fs::remove_dir_all(&p);
+            unregister(&p);
+        }
+    }
 }

@@ -9,3 +9,6 @@ mod emission;
 mod radiance;
 mod scene;
 mod spectrum;
+
+mod lut;
+mod pbsdf;

@@ -1,0 +1,220 @@
+//! Lookup tables (`polbrdf lut`, Python's `polbrdf.lut`; docs/scaling.md): the rows over
+//! materials × wavelengths × in-plane geometries (θi, θr, Δφ = φr − φi) and the `attrs.json`
+//! sidecar, with the attributes that pin the conventions ([`CONVENTIONS`], this crate's
+//! `lut_conventions.json`, shared with the Python package).
+//!
+//! `DIR/table.npy`: one row per (material, wavelength, θi, θr, Δφ), in that C order, with the
+//! columns of the quantities asked for — `m00 … m33` (F row-major, sr⁻¹, psps basis), `brdf`
+//! (sr⁻¹), `dolp`, `aolp_deg` — the values of `polbrdf eval` at `φi = 0`, `φr = Δφ`, each
+//! material evaluated with its index at each wavelength. The directory is staged next to its
+//! destination (`polbrdf_io::StagingDir`) and renamed into place at the end: a failed or
+//! killed run leaves nothing a later run does not remove; an existing `DIR` is refused.
+
+use crate::{TaskError, TaskResult};
+use polbrdf::model::KeyValue;
+use polbrdf::{Engine, GeometryBatch, MaterialSpec};
+use polbrdf_io::lut::{LutConfig, Quantity};
+use polbrdf_io::npy::NpyWriter;
+use serde_json::{json, Map, Value};
+use std::io::BufWriter;
+use std::path::Path;
+
+/// The attributes that pin the conventions, shared with the Python package (which reads this
+/// crate's copy: see the report of issue 33).
+pub const CONVENTIONS: &str = include_str!("../lut_conventions.json");
+
+/// The version written into `attrs.json`.
+const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Geometries per engine call.
+const BLOCK: usize = 1 << 16;
+
+/// The table's columns for the quantities (in their order).
+pub fn columns(quantities: &[Quantity]) -> Vec<String> {
+    let mut out = Vec::new();
+    for q in quantities {
+        match q {
+            Quantity::Mueller => {
+                for i in 0..4 {
+                    for j in 0..4 {
+                        out.push(format!("m{i}{j}"));
+                    }
+                }
+            }
+            Quantity::Brdf => out.push("brdf".into()),
+            Quantity::Dolp => out.push("dolp".into()),
+            Quantity::Aolp => out.push("aolp_deg".into()),
+        }
+    }
+    out
+}
+
+/// A material's parameters as the Python `Material.to_dict()` gives them: every key, `null`
+/// when unset; the index (`index`) or the constant `n`, `k`.
+pub fn material_dict(spec: &MaterialSpec) -> Value {
+    let mut d = Map::new();
+    for key in polbrdf::model::KEYS {
+        let omitted = match *key {
+            "index" => !spec.is_spectral(),
+            "n" | "k" => spec.is_spectral(),
+            _ => false,
+        };
+        if omitted {
+            continue;
+        }
+        let v = match spec.get(key) {
+            Some(KeyValue::Number(x)) => json!(x),
+            Some(KeyValue::Text(t)) => json!(t),
+            Some(KeyValue::Bool(b)) => json!(b),
+            None => Value::Null,
+        };
+        d.insert((*key).to_string(), v);
+    }
+    Value::Object(d)
+}
+
+/// The `attrs.json` document.
+pub fn sidecar(cfg: &LutConfig, columns: &[String]) -> TaskResult<Value> {
+    let mut attrs: Map<String, Value> =
+        serde_json::from_str(CONVENTIONS).expect("lut_conventions.json is a JSON object (tested)");
+    attrs.insert("polbrdf_version".into(), json!(VERSION));
+    let materials: Map<String, Value> = cfg
+        .materials
+        .iter()
+        .map(|(n, s)| (n.clone(), material_dict(s)))
+        .collect();
+    attrs.insert(
+        "materials_json".into(),
+        json!(Value::Object(materials).to_string()),
+    );
+    Ok(json!({
+        "format": "polbrdf-lut 1",
+        "table": "table.npy",
+        "dims": ["material", "wavelength", "theta_i", "theta_r", "dphi"],
+        "shape": [cfg.materials.len(), cfg.wavelength_um.len(), cfg.theta_i_deg.len(),
+                  cfg.theta_r_deg.len(), cfg.dphi_deg.len()],
+        "columns": columns,
+        "quantities": cfg.quantities.iter().map(|q| q.name()).collect::<Vec<_>>(),
+        "coords": {
+            "material": cfg.materials.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+            "wavelength": cfg.wavelength_um,
+            "theta_i": cfg.theta_i_deg,
+            "theta_r": cfg.theta_r_deg,
+            "dphi": cfg.dphi_deg,
+        },
+        "attrs": attrs,
+    }))
+}
+
+/// Streams the rows: per material and wavelength, blocks of [`BLOCK`] geometries, each one
+/// engine call (with the index at the wavelength of every element, as the Python package
+/// calls it, so that the values are the same bit for bit).
+fn write_table(cfg: &LutConfig, cols: &[String], path: &Path) -> TaskResult<()> {
+    let io_err = |source: std::io::Error| {
+        TaskError::Io(polbrdf_io::Error::Write {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
+    let file = std::fs::File::create(path).map_err(io_err)?;
+    let mut w = NpyWriter::new(BufWriter::with_capacity(1 << 22, file), cols, cfg.rows())
+        .map_err(io_err)?;
+    let (ni, nr, np) = (
+        cfg.theta_i_deg.len(),
+        cfg.theta_r_deg.len(),
+        cfg.dphi_deg.len(),
+    );
+    let geometries = ni * nr * np;
+    let width = cols.len();
+    let has = |q: Quantity| cfg.quantities.contains(&q);
+    let mut ti = vec![0.0; BLOCK];
+    let mut tr = vec![0.0; BLOCK];
+    let mut pr = vec![0.0; BLOCK];
+    let pi = vec![0.0; BLOCK];
+    let mut m = vec![[0.0; 16]; BLOCK];
+    let (mut b, mut d, mut a) = (vec![0.0; BLOCK], vec![0.0; BLOCK], vec![0.0; BLOCK]);
+    let mut rows = vec![0.0; BLOCK * width];
+    for (_, spec) in &cfg.materials {
+        // As the Python package builds it: a spectral index at the first wavelength of its
+        // data (every evaluation takes the index at its own wavelength).
+        let material = match spec.wavelength_range() {
+            Some((lo, _)) => spec.build_at(lo),
+            None => spec.build(),
+        }?;
+        for &l in &cfg.wavelength_um {
+            let wl = vec![l; BLOCK];
+            for start in (0..geometries).step_by(BLOCK) {
+                let len = BLOCK.min(geometries - start);
+                for k in 0..len {
+                    let g = start + k;
+                    let (i, r, p) = (g / (nr * np), (g / np) % nr, g % np);
+                    ti[k] = cfg.theta_i_deg[i].to_radians();
+                    tr[k] = cfg.theta_r_deg[r].to_radians();
+                    pr[k] = cfg.dphi_deg[p].to_radians();
+                }
+                let batch = GeometryBatch::new(&ti[..len], &pi[..len], &tr[..len], &pr[..len])?;
+                let engine = Engine::new(&material).with_wavelengths(&wl[..len])?;
+                if has(Quantity::Mueller) {
+                    engine.mueller_into(&batch, &mut m[..len])?;
+                }
+                if has(Quantity::Brdf) || has(Quantity::Dolp) || has(Quantity::Aolp) {
+                    engine.brdf_dolp_aolp_into(
+                        &batch,
+                        &mut b[..len],
+                        &mut d[..len],
+                        &mut a[..len],
+                    )?;
+                }
+                for k in 0..len {
+                    let row = &mut rows[k * width..(k + 1) * width];
+                    let mut c = 0;
+                    for q in &cfg.quantities {
+                        match q {
+                            Quantity::Mueller => {
+                                row[c..c + 16].copy_from_slice(&m[k]);
+                                c += 16;
+                            }
+                            Quantity::Brdf => {
+                                row[c] = b[k];
+                                c += 1;
+                            }
+                            Quantity::Dolp => {
+                                row[c] = d[k];
+                                c += 1;
+                            }
+                            Quantity::Aolp => {
+                                row[c] = a[k].to_degrees();
+                                c += 1;
+                            }
+                        }
+                    }
+                }
+                w.write_rows(&rows[..len * width]).map_err(io_err)?;
+            }
+        }
+    }
+    let file = w.finish().map_err(io_err)?;
+    let file = file.into_inner().map_err(|e| io_err(e.into_error()))?;
+    file.sync_all().map_err(io_err)?;
+    Ok(())
+}
+
+/// Writes the lookup table of `cfg` as the new directory `out`: `table.npy` and `attrs.json`.
+///
+/// # Errors
+/// [`TaskError::Io`] naming the file (an existing `out` is refused); [`TaskError::Model`] for
+/// a material the engine refuses.
+pub fn write_lut(cfg: &LutConfig, out: &Path) -> TaskResult<()> {
+    let stage = polbrdf_io::StagingDir::create(out)?;
+    let cols = columns(&cfg.quantities);
+    write_table(cfg, &cols, &stage.path().join("table.npy"))?;
+    let doc = sidecar(cfg, &cols)?;
+    let text = serde_json::to_string_pretty(&doc).expect("JSON of finite values");
+    std::fs::write(stage.path().join("attrs.json"), text + "\n").map_err(|source| {
+        polbrdf_io::Error::Write {
+            path: out.join("attrs.json"),
+            source,
+        }
+    })?;
+    Ok(stage.commit()?)
+}
