@@ -20,6 +20,11 @@ def _geometries(n: int, seed: int = 1) -> tuple[np.ndarray, ...]:
     return ti, pi, tr, pr
 
 
+def _specular_f00(material: polbrdf.Material, ti: np.ndarray, pi: np.ndarray) -> np.ndarray:
+    """P of the float32 contract: F00 (float64) at the specular direction of the same θi."""
+    return polbrdf.mueller(material, ti, pi, ti, np.asarray(pi) + 180.0)[..., 0, 0]
+
+
 @pytest.mark.parametrize(
     "material",
     [
@@ -29,11 +34,6 @@ def _geometries(n: int, seed: int = 1) -> tuple[np.ndarray, ...]:
         polbrdf.Material(n=1.5, sigma_deg=0.5, rho_d=0.02, rho_v=0.01),
     ],
 )
-def _specular_f00(material: polbrdf.Material, ti: np.ndarray, pi: np.ndarray) -> np.ndarray:
-    """P of the float32 contract: F00 (float64) at the specular direction of the same θi."""
-    return polbrdf.mueller(material, ti, pi, ti, np.asarray(pi) + 180.0)[..., 0, 0]
-
-
 def test_float32_is_within_the_contract(material: polbrdf.Material) -> None:
     # Computed in single precision (docs/model.md §12, the float32 contract): every entry
     # within 1e-5·F00 + 1e-6·P of float64, P the F00 at the specular direction of the same θi

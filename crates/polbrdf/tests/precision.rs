@@ -409,6 +409,41 @@ fn float32_of_large_outputs_and_partial_blocks() {
 }
 
 #[test]
+fn float32_non_temporal_stores_change_no_bit() {
+    // `Kernel::streaming_f32` (non-temporal stores where the output is 16-byte aligned,
+    // `engine::simd::f32_streams_pay` decides for the engine): the same bits as plain stores at
+    // every SIMD level and at every 4-byte offset of the output (so both aligned and not), with
+    // a partial last block.
+    let m = polbrdf::preset("paint").unwrap().build().unwrap();
+    let mut rng = Rng::new(12);
+    let geoms: Vec<[f64; 4]> = (0..1000 + 37).map(|_| random_geometry(&mut rng)).collect();
+    let cols = columns(&geoms);
+    let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
+    let n = geoms.len();
+    for level in SimdLevel::supported() {
+        let k = Kernel::with_level(&m, level).unwrap();
+        let mut plain = vec![[0.0f32; 16]; n];
+        k.clone()
+            .streaming_f32(false)
+            .mueller_f32_into(&batch, 0, &mut plain);
+        for shift in 0..4 {
+            let mut buf = vec![f32::NAN; 16 * n + 4];
+            let (rows, _) = buf[shift..shift + 16 * n].as_chunks_mut::<16>();
+            k.clone()
+                .streaming_f32(true)
+                .mueller_f32_into(&batch, 0, rows);
+            for (i, (a, b)) in rows.iter().zip(&plain).enumerate() {
+                assert_eq!(
+                    a.map(f32::to_bits),
+                    b.map(f32::to_bits),
+                    "{level:?} {shift} {i}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn float32_beyond_its_range_is_refused() {
     let mut s = MaterialSpec::new(1.5, 5.0);
     (s.rho_d, s.rho_v) = (1e100, 1e100);

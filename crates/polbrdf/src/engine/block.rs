@@ -59,8 +59,9 @@ impl Thresholds for f64 {
 }
 
 /// The f32 kernel's bounds for an accuracy of 1e-5·F00 against f64 (docs/model.md §12,
-/// "Precision"): D's relative error is about `2bθN²·δθN/θN` with `δθN/θN` up to about 2 f32
-/// ulps (measured), so `bθN² ≤ 20`; the Fresnel amplitudes' condition number times f32's ε
+/// "Precision"; beyond them the float32 contract's `1e-6·P` covers D, [`TAIL_KEEP`]): D's
+/// relative error is about `2bθN²·δθN/θN` with `δθN/θN` up to about 2 f32 ulps (measured), so
+/// `bθN² ≤ 20`; the Fresnel amplitudes' condition number times f32's ε
 /// stays near 1e-6 at 20.
 impl Thresholds for f32 {
     const D_EXPONENT_MAX: f32 = 20.0;

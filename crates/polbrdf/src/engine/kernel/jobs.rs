@@ -230,7 +230,8 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
             refine_d::<M, G, N>(&scratch, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
-            self.out.put_rows_f32(start, len, &rows, &mut staged);
+            self.out
+                .put_rows_f32(start, len, &rows, &mut staged, k.stream32);
             for j in 0..len {
                 if front.fallback[j] {
                     wide.pending[wide.len] = start + j;
@@ -243,6 +244,9 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
         }
         if wide.len > 0 {
             self.flush::<M>(&mut wide, &mut cache);
+        }
+        if k.stream32 {
+            store_fence();
         }
     }
 }

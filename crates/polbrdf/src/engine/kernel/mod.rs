@@ -85,6 +85,8 @@ pub struct Kernel<'a> {
     ill32: bool,
     /// Write full-Mueller results with non-temporal stores (for large outputs).
     stream: bool,
+    /// The same for the f32 kernel's row-major outputs.
+    stream32: bool,
 }
 
 impl<'a> Kernel<'a> {
@@ -128,6 +130,7 @@ impl<'a> Kernel<'a> {
                 && (d.a() == 0.0 || d.a() > 1e-20),
             ill32: index_ill_for::<f32>(n2r, n2i),
             stream: false,
+            stream32: false,
         }
     }
 
@@ -168,12 +171,23 @@ impl<'a> Kernel<'a> {
     /// non-temporal stores, straight from the transpose, where the CPU has AVX and the output
     /// is 16-byte aligned (256-bit stores where it is 32-byte aligned): no read for ownership
     /// of the output's cache lines, and the caches are left alone — faster for outputs much
-    /// larger than the caches, slower for outputs read back at once. Partial blocks,
-    /// elements taken from the one-geometry path and other outputs use plain stores. The bits
-    /// are the same either way. Off by default ([`crate::Engine`] decides by the output's
-    /// size).
+    /// larger than the caches, slower for outputs read back at once. So does
+    /// [`Kernel::mueller_f32_into`] (128-bit stores) where they pay on this CPU
+    /// ([`crate::engine::simd::f32_streams_pay`]; [`Kernel::streaming_f32`] sets it alone).
+    /// Partial blocks, elements taken from the one-geometry path and other outputs use plain
+    /// stores. The bits are the same either way. Off by default ([`crate::Engine`] decides by
+    /// the output's size).
     pub fn streaming(mut self, on: bool) -> Self {
         self.stream = on;
+        self.stream32 = on && crate::engine::simd::f32_streams_pay();
+        self
+    }
+
+    /// Non-temporal stores for [`Kernel::mueller_f32_into`]'s whole blocks (16-byte aligned
+    /// outputs) on or off, whatever the CPU — for measuring them (`polbrdf bench`), and for
+    /// tests.
+    pub fn streaming_f32(mut self, on: bool) -> Self {
+        self.stream32 = on;
         self
     }
 
@@ -211,8 +225,9 @@ impl<'a> Kernel<'a> {
     }
 
     /// As [`Kernel::mueller_into`] in single precision (docs/model.md §12, "Precision"): the
-    /// same formulas computed in f32, within 1e-5·F00 of the f64 results; an element where f32
-    /// would not reach that (D far down its tail, both directions near grazing, an index near
+    /// same formulas computed in f32, within the float32 contract — `1e-5·F00 + 1e-6·P` of the
+    /// f64 results, `P` the F00 at the specular direction of the same θi; an element where f32
+    /// would not reach that (D far down its tail with a direction near grazing, an index near
     /// 1, a non-finite intermediate) is computed in f64 and rounded, as is every element of a
     /// material whose parameters are beyond f32's comfortable range. Returns whether some
     /// finite entry was beyond f32's range (stored as ±∞).

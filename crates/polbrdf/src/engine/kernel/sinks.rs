@@ -90,7 +90,7 @@ impl MuellerOut for [f32; 16] {
                         overflow |= y.is_infinite() & x.is_finite();
                     }
                 }
-                transpose_f32(&narrow, whole);
+                transpose_f32::<N, false>(&narrow, whole);
                 overflow
             }
             Err(_) => {
@@ -145,13 +145,15 @@ pub(super) trait Sink {
 
 /// A [`Sink`] of single precision, which also takes the f32 kernel's rows.
 pub(super) trait SinkF32: Sink {
-    /// Elements `start .. start + len` from a block's 16 rows of f32 lanes.
+    /// Elements `start .. start + len` from a block's 16 rows of f32 lanes; `stream`: whole
+    /// blocks of row-major outputs with non-temporal stores where the destination allows.
     fn put_rows_f32<const N: usize>(
         &mut self,
         start: usize,
         len: usize,
         rows: &[[f32; N]; 16],
         staged: &mut [[f32; 16]; N],
+        stream: bool,
     );
 }
 
@@ -181,7 +183,8 @@ impl<O: MuellerOut> Sink for Rows<'_, O> {
 }
 
 impl SinkF32 for Rows<'_, [f32; 16]> {
-    /// A whole block is transposed straight into the output, a partial one through `staged`.
+    /// A whole block is transposed straight into the output (with `stream`, by non-temporal
+    /// stores where it is 16-byte aligned), a partial one through `staged`.
     #[inline(always)]
     fn put_rows_f32<const N: usize>(
         &mut self,
@@ -189,12 +192,14 @@ impl SinkF32 for Rows<'_, [f32; 16]> {
         len: usize,
         rows: &[[f32; N]; 16],
         staged: &mut [[f32; 16]; N],
+        stream: bool,
     ) {
         let dst = &mut self.0[start..start + len];
         match <&mut [[f32; 16]; N]>::try_from(&mut *dst) {
-            Ok(whole) => transpose_f32(rows, whole),
+            Ok(whole) if stream_to(whole, stream) => transpose_f32::<N, true>(rows, whole),
+            Ok(whole) => transpose_f32::<N, false>(rows, whole),
             Err(_) => {
-                transpose_f32(rows, staged);
+                transpose_f32::<N, false>(rows, staged);
                 dst.copy_from_slice(&staged[..len]);
             }
         }
@@ -296,6 +301,7 @@ impl SinkF32 for Planes<'_, f32> {
         len: usize,
         rows: &[[f32; N]; 16],
         _staged: &mut [[f32; 16]; N],
+        _stream: bool,
     ) {
         copy_rows(&mut self.planes, start, len, rows);
     }
@@ -338,19 +344,36 @@ pub(super) fn transpose_tail<T: Copy, const N: usize>(
     }
 }
 
-/// [`transpose`] of single-precision rows: with SSE shuffles (part of x86-64) in 4×4 tiles.
-/// Always plain stores: non-temporal ones (16 bytes at a time) made the float32 output
-/// slower (docs/model.md §12).
+/// [`transpose`] of single-precision rows: with SSE shuffles (part of x86-64) in 4×4 tiles;
+/// with `STREAM` by non-temporal stores (16 bytes at a time; `out` must then be 16-byte
+/// aligned), which pay on some CPUs and not on others ([`crate::engine::simd::f32_streams_pay`]).
 #[inline(always)]
-pub(super) fn transpose_f32<const N: usize>(rows: &[[f32; N]; 16], out: &mut [[f32; 16]; N]) {
+pub(super) fn transpose_f32<const N: usize, const STREAM: bool>(
+    rows: &[[f32; N]; 16],
+    out: &mut [[f32; 16]; N],
+) {
     #[cfg(not(target_arch = "x86_64"))]
     let from = 0;
     #[cfg(target_arch = "x86_64")]
     let from = {
         use std::arch::x86_64::{
-            _mm_loadu_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_storeu_ps, _mm_unpackhi_ps,
-            _mm_unpacklo_ps,
+            __m128, _mm_loadu_ps, _mm_movehl_ps, _mm_movelh_ps, _mm_storeu_ps, _mm_stream_ps,
+            _mm_unpackhi_ps, _mm_unpacklo_ps,
         };
+        debug_assert!(!STREAM || (out.as_ptr() as usize).is_multiple_of(16));
+        // SAFETY (of calls): `p` is valid for 16 bytes; with STREAM, 16-byte aligned (every
+        // row of `out` is 64 bytes).
+        #[inline(always)]
+        unsafe fn put<const STREAM: bool>(p: *mut f32, v: __m128) {
+            // SAFETY: as the caller promises.
+            unsafe {
+                if STREAM {
+                    _mm_stream_ps(p, v);
+                } else {
+                    _mm_storeu_ps(p, v);
+                }
+            }
+        }
         let whole = N - N % 4;
         for j0 in (0..whole).step_by(4) {
             for e0 in (0..16).step_by(4) {
@@ -363,10 +386,10 @@ pub(super) fn transpose_f32<const N: usize>(rows: &[[f32; N]; 16], out: &mut [[f
                     let d = _mm_loadu_ps(rows[e0 + 3][j0..].as_ptr());
                     let (t0, t1) = (_mm_unpacklo_ps(a, b), _mm_unpackhi_ps(a, b));
                     let (t2, t3) = (_mm_unpacklo_ps(c, d), _mm_unpackhi_ps(c, d));
-                    _mm_storeu_ps(out[j0][e0..].as_mut_ptr(), _mm_movelh_ps(t0, t2));
-                    _mm_storeu_ps(out[j0 + 1][e0..].as_mut_ptr(), _mm_movehl_ps(t2, t0));
-                    _mm_storeu_ps(out[j0 + 2][e0..].as_mut_ptr(), _mm_movelh_ps(t1, t3));
-                    _mm_storeu_ps(out[j0 + 3][e0..].as_mut_ptr(), _mm_movehl_ps(t3, t1));
+                    put::<STREAM>(out[j0][e0..].as_mut_ptr(), _mm_movelh_ps(t0, t2));
+                    put::<STREAM>(out[j0 + 1][e0..].as_mut_ptr(), _mm_movehl_ps(t2, t0));
+                    put::<STREAM>(out[j0 + 2][e0..].as_mut_ptr(), _mm_movelh_ps(t1, t3));
+                    put::<STREAM>(out[j0 + 3][e0..].as_mut_ptr(), _mm_movehl_ps(t3, t1));
                 }
             }
         }
