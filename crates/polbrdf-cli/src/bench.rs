@@ -158,18 +158,27 @@ fn fma_rates(repeats: usize) -> Option<FmaRates> {
     None
 }
 
-/// CPU seconds this thread has run (Linux: `/proc/thread-self/schedstat`, nanoseconds), or
-/// `None` where that is not available.
+/// CPU seconds this thread has run (`CLOCK_THREAD_CPUTIME_ID`), or `None` where that clock is
+/// not available.
 fn thread_cpu_s() -> Option<f64> {
-    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
-    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
-    Some(ns * 1e-9)
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `ts` is a valid `timespec` for the call to write.
+        if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
+            return Some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9);
+        }
+    }
+    None
 }
 
 /// Non-temporal against plain stores of float32 row-major output on one thread (the serial
 /// kernel, `n` elements of `batch`): the median over `repeats` alternating pairs of each
 /// pair's time ratio plain/non-temporal (> 1: non-temporal faster), by the thread's CPU time
-/// where available (else wall time) — what `polbrdf::engine::simd::f32_streams_pay` decides
+/// where the clock is available (else wall time) — what `polbrdf::engine::simd::f32_streams_pay` decides
 /// by CPU vendor, measured here (docs/model.md §12, "Stores").
 fn f32_store_ratio(material: &polbrdf::Material, batch: &GeometryBatch<'_>, repeats: usize) -> f64 {
     let k = Kernel::new(material);
@@ -181,7 +190,7 @@ fn f32_store_ratio(material: &polbrdf::Material, batch: &GeometryBatch<'_>, repe
             .mueller_f32_into(batch, 0, &mut out);
         black_box(&mut out);
         match (c, thread_cpu_s()) {
-            (Some(a), Some(b)) => b - a,
+            (Some(a), Some(b)) if b > a => b - a,
             _ => w.elapsed().as_secs_f64(),
         }
     };
