@@ -1,6 +1,6 @@
 """polbrdf against Mitsuba 3 on the same random geometries (run by scripts/bench-peers).
 
-    python scripts/bench_peers.py [--count N] [--repeats R] [--threads T] [--cli PATH]
+    python scripts/bench_peers.py [--count N] [--repeats R] [--threads T,...] [--cli PATH]
                                   [--check-only]
 
 1. The physics check: where the two models overlap — the specular (facet) term of a conductor —
@@ -16,10 +16,14 @@
    float32) over N geometries in one launch (`dr.eval`), the JIT compiled and warm, against
    polbrdf's `mueller` (full Mueller, float64 and float32, into reused `out=` arrays, also in
    the planar layout, Mitsuba's own) on the same geometries, and its `mueller_directions` on
-   Mitsuba's own float32 direction vectors, both on every core (or on T threads each with
-   --threads: Dr.Jit's `set_thread_count`, rayon's `RAYON_NUM_THREADS`; `--threads 1` compares
-   one core against one core, apart from how either scales); and `polbrdf bench` (the Rust
-   batch API) when --cli is given. Medians of R repeats; prints the ratios.
+   Mitsuba's own float32 direction vectors, on one thread each and on every core by default
+   (--threads: a comma-separated list of thread counts, `all` for every core; each count runs
+   in a process of its own, with Dr.Jit's `set_thread_count` and rayon's `RAYON_NUM_THREADS`);
+   and `polbrdf bench` (the Rust batch API) when --cli is given. Timed by **CPU time** (the
+   process's CPU-seconds, every thread of either library included) and wall time, in R
+   interleaved rounds (one call of each case per round); the ratio to Mitsuba is the median
+   over the rounds of each round's ratio (paired, so a change of load between rounds cancels),
+   the rates are medians. On a shared host only the CPU-time figures are comparable.
 """
 
 from __future__ import annotations
@@ -39,6 +43,23 @@ import polbrdf
 N_INDEX, K_INDEX = 1.2, 7.0
 ALPHA = 0.2  # Beckmann roughness: RMS slope
 SIGMA_DEG = float(np.degrees(np.arctan(ALPHA)))  # polbrdf's σ of the same lobe width
+
+
+def cpu_family() -> str:
+    """`family F model M` of the first CPU, from /proc/cpuinfo (the model name of a VM can be
+    as bare as "AMD EPYC")."""
+    fam = mod = "?"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key = line.split(":", 1)[0].strip()
+                if key == "cpu family" and fam == "?":
+                    fam = line.split(":", 1)[1].strip()
+                elif key == "model" and mod == "?":
+                    mod = line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return f"family {fam} model {mod}"
 
 
 def cpu() -> tuple[str, str]:
@@ -70,18 +91,29 @@ def geometries(n: int, seed: int = 2024) -> tuple[np.ndarray, ...]:
     return ti, pi, tr, pr
 
 
-def medians_s(repeats: int, cases: list) -> list[float]:
-    """Median wall time of each callable, after one warm-up call each; the repeats interleaved
-    (one call of each case per round), so that a change of machine load affects all alike."""
+def paired(repeats: int, cases: list) -> list[dict[str, float]]:
+    """CPU and wall seconds of each callable over `repeats` interleaved rounds (one call of each
+    per round, after one warm-up call each): the median of each, and the median over the rounds
+    of the first case's time over this one's (a paired ratio, CPU and wall)."""
     for f in cases:
         f()
-    times: list[list[float]] = [[] for _ in cases]
+    cpu: list[list[float]] = [[] for _ in cases]
+    wall: list[list[float]] = [[] for _ in cases]
     for _ in range(repeats):
-        for f, t in zip(cases, times):
-            t0 = time.perf_counter()
+        for f, c, w in zip(cases, cpu, wall):
+            c0, w0 = time.process_time(), time.perf_counter()
             f()
-            t.append(time.perf_counter() - t0)
-    return [float(np.median(t)) for t in times]
+            c.append(time.process_time() - c0)
+            w.append(time.perf_counter() - w0)
+    out = []
+    for c, w in zip(cpu, wall):
+        out.append({
+            "cpu_s": float(np.median(c)),
+            "wall_s": float(np.median(w)),
+            "cpu_ratio": float(np.median(np.array(cpu[0]) / np.array(c))),
+            "wall_ratio": float(np.median(np.array(wall[0]) / np.array(w))),
+        })
+    return out
 
 
 class Mitsuba:
@@ -162,23 +194,71 @@ def physics_check(n: int = 20000) -> float:
     return float(np.max(np.abs(d_mit[ok] - d_pol[ok])))
 
 
+def timing(n: int, r: int, threads: int | None) -> None:
+    """The throughput table on `threads` threads each (None: every core)."""
+    where = "every core" if threads is None else f"{threads} thread(s) each"
+    ti, pi, tr, pr = geometries(n)
+    mit = Mitsuba(ti, pi, tr, pr, threads)
+    mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
+    out64 = np.empty((n, 4, 4))
+    out32 = np.empty((n, 4, 4), dtype=np.float32)
+    planes64 = np.empty((4, 4, n))
+    planes32 = np.empty((4, 4, n), dtype=np.float32)
+    ws, wd = mit.w_source, mit.w_detector
+    cases = [
+        (f"Mitsuba {mit.version} llvm_ad_mono_polarized roughconductor eval (float32)", mit.eval),
+        ("mueller float64, angles", lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False,
+                                                            out=out64)),
+        ("mueller float32, angles", lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False,
+                                                            out=out32)),
+        ("mueller_directions float64 (Mitsuba's vectors)",
+         lambda: polbrdf.mueller_directions(mat, ws, wd, out=out64)),
+        ("mueller_directions float32 (Mitsuba's vectors)",
+         lambda: polbrdf.mueller_directions(mat, ws, wd, out=out32)),
+        ("mueller float64, angles, layout=\"planar\" (Mitsuba's)",
+         lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes64,
+                                 layout="planar")),
+        ("mueller float32, angles, layout=\"planar\"",
+         lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes32,
+                                 layout="planar")),
+        ("mueller float64, angles, new array",
+         lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False)),
+    ]
+    res = paired(r, [f for _, f in cases])
+    print(f"\n{n} random geometries, {where}, {r} interleaved rounds (out= reused unless said); "
+          f"M elements per CPU-second and per wall second (medians), and the paired ratios to "
+          f"Mitsuba (medians over the rounds), CPU time and wall time:")
+    print(f"  {'':<58} {'M/CPU-s':>8} {'M/s':>7} {'CPU ratio':>9} {'wall ratio':>10}")
+    for (name, _), x in zip(cases, res):
+        print(f"  {name:<58} {n / x['cpu_s'] / 1e6:8.1f} {n / x['wall_s'] / 1e6:7.1f} "
+              f"{x['cpu_ratio']:8.2f}x {x['wall_ratio']:9.2f}x")
+    sys.stdout.flush()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--count", type=int, default=2_000_000)
     ap.add_argument("--repeats", type=int, default=7)
-    ap.add_argument("--threads", type=int, help="threads of each (default: every core)")
+    ap.add_argument("--threads", default="1,all",
+                    help="comma-separated thread counts of the timings, `all` for every core "
+                         "(default 1,all)")
+    ap.add_argument("--timing", help=argparse.SUPPRESS)
     ap.add_argument("--cli", help="the polbrdf binary, for `polbrdf bench` (the Rust batch API)")
     ap.add_argument("--check-only", action="store_true", help="only the physics check")
     args = ap.parse_args()
-    if args.threads is not None:
-        if args.threads < 1:
-            raise SystemExit("--threads must be at least 1")
-        # Read by rayon when its pool starts, at polbrdf's first parallel call (below).
-        os.environ["RAYON_NUM_THREADS"] = str(args.threads)
-    where = "all cores" if args.threads is None else f"{args.threads} thread(s) each"
+    if args.timing is not None:
+        # A child process: one thread count (rayon's pool size is read from the environment at
+        # polbrdf's first parallel call).
+        timing(args.count, args.repeats, None if args.timing == "all" else int(args.timing))
+        return
+    counts = [t.strip() for t in args.threads.split(",") if t.strip()]
+    for t in counts:
+        if t != "all" and not (t.isdigit() and int(t) >= 1):
+            raise SystemExit(f"--threads: {t!r} is not a thread count (an integer ≥ 1 or all)")
 
     model, simd = cpu()
-    print(f"CPU: {model}, {os.cpu_count()} logical CPUs, {simd}; load average {os.getloadavg()}")
+    print(f"CPU: {model} ({cpu_family()}), {os.cpu_count()} logical CPUs, SIMD level {simd}; "
+          f"load average {os.getloadavg()}")
     dev = physics_check()
     print(f"physics: DoLP of a Beckmann conductor (n={N_INDEX}, k={K_INDEX}), Mitsuba vs polbrdf "
           f"(specular term, shadowing off): max |ΔDoLP| = {dev:.2e} over 20000 geometries")
@@ -188,69 +268,34 @@ def main() -> None:
         return
 
     n, r = args.count, args.repeats
-    ti, pi, tr, pr = geometries(n)
-    mit = Mitsuba(ti, pi, tr, pr, args.threads)
-    mat = polbrdf.Material(n=N_INDEX, k=K_INDEX, sigma_deg=SIGMA_DEG, shadowing=False)
-    out64 = np.empty((n, 4, 4))
-    out32 = np.empty((n, 4, 4), dtype=np.float32)
-    planes64 = np.empty((4, 4, n))
-    planes32 = np.empty((4, 4, n), dtype=np.float32)
-    cases = [
-        (f"Mitsuba {mit.version} llvm_ad_mono_polarized roughconductor eval (float32)", mit.eval),
-        (
-            "polbrdf.mueller float64, out= reused",
-            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out64),
-        ),
-        (
-            "polbrdf.mueller float64, new array",
-            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False),
-        ),
-        (
-            "polbrdf.mueller float32 (precision), out= reused",
-            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=out32),
-        ),
-        (
-            "polbrdf.mueller float64, layout=\"planar\" (Mitsuba's), out= reused",
-            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes64,
-                                    layout="planar"),
-        ),
-        (
-            "polbrdf.mueller float32, layout=\"planar\", out= reused",
-            lambda: polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False, out=planes32,
-                                    layout="planar"),
-        ),
-        (
-            "polbrdf.mueller_directions float64 (Mitsuba's vectors), out= reused",
-            lambda: polbrdf.mueller_directions(mat, mit.w_source, mit.w_detector, out=out64),
-        ),
-        (
-            "polbrdf.mueller_directions float32 (Mitsuba's vectors), out= reused",
-            lambda: polbrdf.mueller_directions(mat, mit.w_source, mit.w_detector, out=out32),
-        ),
-    ]
-    times = medians_s(r, [f for _, f in cases])
-    t_mit = times[0]
-    print(f"\n{n} random geometries, medians of {r} interleaved repeats, {where}; "
-          f"M evaluations/s and the ratio to Mitsuba:")
-    for (name, _), t in zip(cases, times):
-        print(f"  {name:<72} {n / t / 1e6:7.1f} M/s  {t_mit / t:5.2f}x")
+    for t in counts:
+        env = dict(os.environ)
+        if t != "all":
+            env["RAYON_NUM_THREADS"] = t
+        else:
+            env.pop("RAYON_NUM_THREADS", None)
+        subprocess.run([sys.executable, __file__, "--timing", t, "--count", str(n),
+                        "--repeats", str(r)], check=True, env=env)
     if args.cli:
-        cmd = [args.cli, "bench", "--json", "--count", str(min(n, 1_000_000)),
-               "--repeats", str(r)]
-        if args.threads is not None:
-            cmd += ["--threads", str(args.threads)]
-        doc = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
-        best = doc["results"][-1]
-        bw = doc.get("write_bandwidth", {})
-        print(f"\n`polbrdf bench` (the Rust batch API, `paint`, {doc['count']} geometries, "
-              f"{best['threads']} threads, SIMD level {doc['cpu']['simd']}; run after the above):")
-        print(f"  full Mueller float64 {best['mueller_evals_per_s'] / 1e6:7.1f} M/s  "
-              f"float32 {best.get('mueller_f32_evals_per_s', float('nan')) / 1e6:7.1f} M/s  "
-              f"BRDF+DoLP {best['brdf_dolp_evals_per_s'] / 1e6:7.1f} M/s")
-        if bw:
-            print(f"  memory write bandwidth {bw['bytes_per_s'] / 1e9:.1f} GB/s: full-Mueller "
-                  f"roofline {bw['full_mueller_roofline_evals_per_s'] / 1e6:.0f} M/s (float64), "
-                  f"{bw['full_mueller_f32_roofline_evals_per_s'] / 1e6:.0f} M/s (float32)")
+        for t in counts:
+            cmd = [args.cli, "bench", "--json", "--count", str(min(n, 1_000_000)),
+                   "--repeats", str(r)]
+            if t != "all":
+                cmd += ["--threads", t]
+            doc = json.loads(subprocess.run(cmd, check=True, capture_output=True,
+                                            text=True).stdout)
+            best = doc["results"][-1]
+            bw = doc.get("write_bandwidth", {})
+            print(f"\n`polbrdf bench` (the Rust batch API, `paint`, {doc['count']} geometries, "
+                  f"{best['threads']} threads, SIMD level {doc['cpu']['simd']}; wall time):")
+            print(f"  full Mueller float64 {best['mueller_evals_per_s'] / 1e6:7.1f} M/s  "
+                  f"float32 {best.get('mueller_f32_evals_per_s', float('nan')) / 1e6:7.1f} M/s  "
+                  f"BRDF+DoLP {best['brdf_dolp_evals_per_s'] / 1e6:7.1f} M/s")
+            if bw:
+                print(f"  memory write bandwidth {bw['bytes_per_s'] / 1e9:.1f} GB/s: full-Mueller "
+                      f"roofline {bw['full_mueller_roofline_evals_per_s'] / 1e6:.0f} M/s "
+                      f"(float64), {bw['full_mueller_f32_roofline_evals_per_s'] / 1e6:.0f} M/s "
+                      f"(float32)")
     print(f"\nload average after the run: {os.getloadavg()}")
 
 

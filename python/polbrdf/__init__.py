@@ -248,8 +248,9 @@ def mueller(
         the allocation and the page faults of a new array.
     precision : {"float64", "float32"} or dtype, optional
         The result's dtype (default float64, or ``out``'s dtype). float32 computes the model
-        in single precision, every entry within 1e-5·F00 of float64 (docs/model.md §12; the
-        few elements where single precision would not reach that are computed in float64 and
+        in single precision, every entry within 1e-5·F00 + 1e-6·P of float64, P the F00 at the
+        specular direction of the same θi (the float32 contract, docs/model.md §12; the few
+        elements where single precision would not reach that are computed in float64 and
         rounded) — about twice as fast, half the memory. Fits and the reference use float64.
     layout : {"interleaved", "planar"}
         ``"interleaved"`` (default): the 4×4 matrix last, ``F[..., i, j]``. ``"planar"``: the

@@ -162,12 +162,27 @@ impl Store<f64> for StoreF64 {
     }
 }
 
-/// [`Store`] in float32.
-pub(crate) struct StoreF32;
+/// [`Store`] in float32; `stream` as [`StoreF64`] (non-temporal stores only where they pay on
+/// this CPU: `Kernel::streaming`).
+pub(crate) struct StoreF32 {
+    stream: bool,
+}
+
+impl StoreF32 {
+    pub(crate) fn new(m: &Material, n: usize) -> Self {
+        Self {
+            stream: Engine::new(m).streams(n),
+        }
+    }
+}
 
 impl Store<f32> for StoreF32 {
     fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f32; 16]]) -> bool {
-        k.mueller_f32_into(batch, 0, rows)
+        if self.stream {
+            k.clone().streaming(true).mueller_f32_into(batch, 0, rows)
+        } else {
+            k.mueller_f32_into(batch, 0, rows)
+        }
     }
     fn store_planes(&self, k: &Kernel<'_>, b: &impl Batch, planes: &mut Planes<'_, f32>) -> bool {
         k.mueller_planes_f32_into(b, 0, planes)

@@ -276,10 +276,10 @@ pub(crate) fn direction_rows<T: Send>(
 }
 
 /// The pBRDF `F` (sr⁻¹, psps basis) at `n` geometries as an `(n, 16)` array, row-major 4×4 per
-/// geometry, in `precision` (`"float64"`, or `"float32"`: computed in single precision, every
-/// entry within `1e-5·F00 + 2⁻¹⁵⁰` of float64, docs/model.md §12), written into `out` when
-/// given (an `(n, 16)` C-contiguous array of that dtype, which is returned). The Python layer
-/// reshapes it to `shape + (4, 4)`. With `planar`, a `(16, n)` array of 16 planes instead
+/// geometry, in `precision` (`"float64"`, or `"float32"`: computed in single precision within
+/// the float32 contract, `1e-5·F00 + 1e-6·P + 2⁻¹⁵⁰` of float64, docs/model.md §12), written
+/// into `out` when given (an `(n, 16)` C-contiguous array of that dtype, which is returned).
+/// The Python layer reshapes it to `shape + (4, 4)`. With `planar`, a `(16, n)` array of 16 planes instead
 /// (`Planes`), which the Python layer reshapes to `(4, 4) + shape`.
 #[pyfunction]
 #[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, degrees, wavelength_um=None, out=None, precision="float64", planar=false))]
@@ -308,7 +308,7 @@ pub(crate) fn mueller_flat<'py>(
             mueller_rows(m, input, wl, degrees, rows, &StoreF64::new(m, n))
         }),
         Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
-            mueller_rows(m, input, wl, degrees, rows, &StoreF32)
+            mueller_rows(m, input, wl, degrees, rows, &StoreF32::new(m, n))
         }),
     }
 }
@@ -355,7 +355,7 @@ pub(crate) fn mueller_directions_flat<'py>(
             direction_rows(m, [wi, wr], wl, rows, &StoreF64::new(m, n))
         }),
         Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
-            direction_rows(m, [wi, wr], wl, rows, &StoreF32)
+            direction_rows(m, [wi, wr], wl, rows, &StoreF32::new(m, n))
         }),
     }
 }

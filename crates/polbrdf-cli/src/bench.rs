@@ -63,32 +63,71 @@ fn median_seconds(repeats: usize, mut f: impl FnMut()) -> f64 {
 
 /// The memory write bandwidth (bytes/s) on `threads` threads: the time to fill `n` rows of 16
 /// f64 (the size of a full-Mueller output of `n` elements) in parallel chunks, median of
-/// `repeats` — the roofline of a full-Mueller batch is this over 128 bytes per element
-/// (64 in f32).
-fn write_bandwidth(threads: usize, repeats: usize, n: usize) -> Result<f64, CliError> {
+/// `repeats`, with plain stores and with non-temporal ones (`(plain, non_temporal)`; the
+/// latter `None` off x86-64 or when the buffer is not 16-byte aligned) — the roofline of a
+/// full-Mueller batch is the better of the two over 128 bytes per element (64 in f32): the
+/// kernel writes large outputs with non-temporal stores where they pay (docs/model.md §12).
+fn write_bandwidth(
+    threads: usize,
+    repeats: usize,
+    n: usize,
+) -> Result<(f64, Option<f64>), CliError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|e| CliError::Invalid(format!("--threads = {threads}: {e}")))?;
     let mut buf = vec![[0.0f64; 16]; n];
+    let bytes = size_of_val(buf.as_slice()) as f64;
     let mut x = 0.0;
-    let s = pool.install(|| {
+    let plain = pool.install(|| {
         median_seconds(repeats, || {
             x += 1.0;
             buf.par_chunks_mut(4096).for_each(|c| c.fill([x; 16]));
             black_box(&mut buf);
         })
     });
-    Ok(size_of_val(buf.as_slice()) as f64 / s)
+    #[cfg(target_arch = "x86_64")]
+    if (buf.as_ptr() as usize).is_multiple_of(16) {
+        let nt = pool.install(|| {
+            median_seconds(repeats, || {
+                x += 1.0;
+                buf.par_chunks_mut(4096).for_each(|c| fill_streaming(c, x));
+                black_box(&mut buf);
+            })
+        });
+        return Ok((bytes / plain, Some(bytes / nt)));
+    }
+    Ok((bytes / plain, None))
 }
 
-/// The arithmetic roof of one thread: fused multiply-adds per second in 128-bit and in 256-bit
-/// registers (`(per_s_128, per_s_256)`; 4 and 8 f32 lanes, 2 and 4 f64 lanes), 12 independent
-/// chains each so that throughput binds, not latency; medians of `repeats`. `None` without
-/// AVX2 and FMA. A 256-bit rate near half the 128-bit one means 256-bit operations run as two
-/// 128-bit halves (AMD Zen 1): AVX2 then has no more arithmetic throughput than SSE. (512-bit
-/// registers are not timed: on an AVX-512 CPU the peak reported is the 256-bit one.)
-fn fma_rates(repeats: usize) -> Option<(f64, f64)> {
+/// `rows` filled with `x` by non-temporal 16-byte stores (SSE2, part of x86-64), then a
+/// store fence.
+#[cfg(target_arch = "x86_64")]
+fn fill_streaming(rows: &mut [[f64; 16]], x: f64) {
+    use std::arch::x86_64::{_mm_set1_pd, _mm_sfence, _mm_stream_pd};
+    assert!((rows.as_ptr() as usize).is_multiple_of(16));
+    // SAFETY: SSE2 is part of x86-64; every store is inside `rows` (16 bytes at an even index
+    // of a 16-aligned row of 16 f64, each row 128 bytes, so every store is 16-byte aligned).
+    unsafe {
+        let v = _mm_set1_pd(x);
+        for r in rows.iter_mut() {
+            let p = r.as_mut_ptr();
+            for k in (0..16).step_by(2) {
+                _mm_stream_pd(p.add(k), v);
+            }
+        }
+        _mm_sfence();
+    }
+}
+
+/// The arithmetic roof of one thread: fused multiply-adds per second in 128-bit, 256-bit and
+/// (where the CPU has AVX-512F) 512-bit registers (4, 8 and 16 f32 lanes; 2, 4, 8 f64 lanes),
+/// 12 independent chains each so that throughput binds, not latency; medians of `repeats`.
+/// `None` without AVX2 and FMA. A 256-bit rate near half the 128-bit one means 256-bit
+/// operations run as two 128-bit halves (AMD Zen 1): AVX2 then has no more arithmetic
+/// throughput than SSE; likewise a 512-bit rate near half the 256-bit one (AMD Zen 4) means
+/// AVX-512 adds no FMA throughput, only its other instructions.
+fn fma_rates(repeats: usize) -> Option<FmaRates> {
     #[cfg(target_arch = "x86_64")]
     if is_x86_feature_detected!("avx2") && is_x86_feature_detected!("fma") {
         const ITERS: usize = 4_000_000;
@@ -101,12 +140,118 @@ fn fma_rates(repeats: usize) -> Option<(f64, f64)> {
             // SAFETY: as above.
             sink += unsafe { fma_chains::<true>(black_box(ITERS)) }
         });
+        let s512 = is_x86_feature_detected!("avx512f").then(|| {
+            median_seconds(repeats, || {
+                // SAFETY: the CPU has AVX-512F (tested just above).
+                sink += unsafe { fma_chains_512(black_box(ITERS)) }
+            })
+        });
         black_box(sink);
         let fmas = (FMA_CHAINS * ITERS) as f64;
-        return Some((fmas / s128, fmas / s256));
+        return Some(FmaRates {
+            r128: fmas / s128,
+            r256: fmas / s256,
+            r512: s512.map(|s| fmas / s),
+        });
     }
     let _ = repeats;
     None
+}
+
+/// CPU seconds this thread has run (`CLOCK_THREAD_CPUTIME_ID`), or `None` where that clock is
+/// not available.
+fn thread_cpu_s() -> Option<f64> {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `ts` is a valid `timespec` for the call to write.
+        if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
+            return Some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9);
+        }
+    }
+    None
+}
+
+/// Non-temporal against plain stores of float32 row-major output on one thread (the serial
+/// kernel, `n` elements of `batch`): the median over `repeats` alternating pairs of each
+/// pair's time ratio plain/non-temporal (> 1: non-temporal faster), by the thread's CPU time
+/// where the clock is available (else wall time) — what `polbrdf::engine::simd::f32_streams_pay` decides
+/// by CPU vendor, measured here (docs/model.md §12, "Stores").
+fn f32_store_ratio(material: &polbrdf::Material, batch: &GeometryBatch<'_>, repeats: usize) -> f64 {
+    let k = Kernel::new(material);
+    let mut out = vec![[0.0f32; 16]; batch.len()];
+    let mut timed = |stream: bool| {
+        let (c, w) = (thread_cpu_s(), Instant::now());
+        k.clone()
+            .streaming_f32(stream)
+            .mueller_f32_into(batch, 0, &mut out);
+        black_box(&mut out);
+        match (c, thread_cpu_s()) {
+            (Some(a), Some(b)) if b > a => b - a,
+            _ => w.elapsed().as_secs_f64(),
+        }
+    };
+    timed(false);
+    timed(true);
+    median((0..repeats).map(|_| timed(false) / timed(true)).collect())
+}
+
+/// Fused multiply-adds per second of one thread by register width ([`fma_rates`]).
+#[derive(Debug, Clone, Copy)]
+struct FmaRates {
+    r128: f64,
+    r256: f64,
+    r512: Option<f64>,
+}
+
+impl FmaRates {
+    /// f32 lanes per second at the widest width's rate or a narrower one's, whichever is
+    /// more (the peak f32 FLOP/s is twice this, f64's this).
+    fn lanes(&self) -> f64 {
+        (4.0 * self.r128)
+            .max(8.0 * self.r256)
+            .max(16.0 * self.r512.unwrap_or(0.0))
+    }
+
+    /// The widest register width (bits) whose rate reaches that peak within 25 %.
+    fn widest(&self) -> u32 {
+        let peak = self.lanes();
+        if self.r512.is_some_and(|r| 16.0 * r >= 0.75 * peak) {
+            512
+        } else if 8.0 * self.r256 >= 0.75 * peak {
+            256
+        } else {
+            128
+        }
+    }
+}
+
+/// [`fma_chains`] in 512-bit registers (16 f32 lanes).
+///
+/// # Safety
+/// The CPU must support AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn fma_chains_512(iters: usize) -> f32 {
+    use std::arch::x86_64::*;
+    let (m, c) = (_mm512_set1_ps(0.9999), _mm512_set1_ps(1e-4));
+    let mut x = [_mm512_setzero_ps(); FMA_CHAINS];
+    for (k, v) in x.iter_mut().enumerate() {
+        *v = _mm512_set1_ps(1.0 + 0.01 * k as f32);
+    }
+    for _ in 0..iters {
+        for v in x.iter_mut() {
+            *v = _mm512_fmadd_ps(*v, m, c);
+        }
+    }
+    let mut sum = _mm512_setzero_ps();
+    for v in x {
+        sum = _mm512_add_ps(sum, v);
+    }
+    _mm512_reduce_add_ps(sum)
 }
 
 const FMA_CHAINS: usize = 12;
@@ -587,12 +732,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         .iter()
         .map(|&t| run_with(t, args.repeats, &material, &batch, &directions))
         .collect::<Result<Vec<_>, _>>()?;
-    let bandwidth = write_bandwidth(threads, args.repeats, n)?;
+    let (plain_bw, nt_bw) = write_bandwidth(threads, args.repeats, n)?;
+    // The roofline: the better of plain and non-temporal stores (the kernel streams large
+    // outputs where that pays).
+    let bandwidth = plain_bw.max(nt_bw.unwrap_or(0.0));
     let elementary = elementary_ns(args.repeats, Kernel::new(&material).level());
     let fma = fma_rates(args.repeats);
-    // f32 lanes per second at the better width, and whether 256 bits run at full width.
-    let fma_lanes = fma.map(|(r128, r256)| (4.0 * r128).max(8.0 * r256));
-    let full_width = fma.map(|(r128, r256)| 2.0 * r256 > 1.5 * r128);
+    let store_ratio = f32_store_ratio(&material, &batch, args.repeats);
+    // f32 lanes per second at the best width, and whether 256 bits run at full width.
+    let fma_lanes = fma.map(|f| f.lanes());
+    let full_width = fma.map(|f| 2.0 * f.r256 > 1.5 * f.r128);
     let floor_ns: f64 = FLOOR_COUNTS
         .iter()
         .map(|(op, k)| {
@@ -657,12 +806,20 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             "write_bandwidth": {
                 "threads": threads,
                 "bytes_per_s": bandwidth,
+                "plain_bytes_per_s": plain_bw,
+                "non_temporal_bytes_per_s": nt_bw,
                 "full_mueller_roofline_evals_per_s": bandwidth / 128.0,
                 "full_mueller_f32_roofline_evals_per_s": bandwidth / 64.0,
             },
-            "fma_throughput_one_thread": fma.map(|(r128, r256)| json!({
-                "fma_per_s_128bit": r128,
-                "fma_per_s_256bit": r256,
+            "f32_non_temporal_stores": {
+                "paired_ratio_one_thread": store_ratio,
+                "used": polbrdf::engine::simd::f32_streams_pay(),
+            },
+            "fma_throughput_one_thread": fma.map(|f| json!({
+                "fma_per_s_128bit": f.r128,
+                "fma_per_s_256bit": f.r256,
+                "fma_per_s_512bit": f.r512,
+                "widest_full_rate_bits": f.widest(),
                 "peak_f32_flops": 2.0 * fma_lanes.unwrap_or(0.0),
                 "peak_f64_flops": fma_lanes.unwrap_or(0.0),
                 "full_width_256bit": full_width,
@@ -749,19 +906,34 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             );
         }
         println!(
-            "memory write bandwidth ({threads} threads, {:.0} MB filled): {:.1} GB/s — the \
-             full-Mueller roofline is {:.1} M/s in f64 (128 B each), {:.1} M/s in f32",
+            "memory write bandwidth ({threads} threads, {:.0} MB filled): {:.1} GB/s plain, \
+             {} non-temporal — the full-Mueller roofline (the better) is {:.1} M/s in f64 \
+             (128 B each), {:.1} M/s in f32",
             (n * 128) as f64 / 1e6,
-            bandwidth / 1e9,
+            plain_bw / 1e9,
+            nt_bw.map_or("n/a".to_string(), |b| format!("{:.1} GB/s", b / 1e9)),
             bandwidth / 128e6,
             bandwidth / 64e6
         );
-        if let (Some((r128, r256)), Some(lanes), Some(full)) = (fma, fma_lanes, full_width) {
+        println!(
+            "float32 output, non-temporal against plain stores (1 thread, paired CPU-time \
+             ratios, median): {store_ratio:.2}x — {} on this CPU",
+            if polbrdf::engine::simd::f32_streams_pay() {
+                "used"
+            } else {
+                "not used"
+            }
+        );
+        if let (Some(f), Some(lanes), Some(full)) = (fma, fma_lanes, full_width) {
             println!(
                 "fused multiply-adds (1 thread): {:.2} G/s in 128-bit registers, {:.2} G/s in \
-                 256-bit: a peak of {:.1} GFLOP/s in f32, {:.1} in f64 per thread{}",
-                r128 / 1e9,
-                r256 / 1e9,
+                 256-bit, {} in 512-bit (widest at full rate: {} bits): a peak of {:.1} GFLOP/s \
+                 in f32, {:.1} in f64 per thread{}",
+                f.r128 / 1e9,
+                f.r256 / 1e9,
+                f.r512
+                    .map_or("n/a".to_string(), |r| format!("{:.2} G/s", r / 1e9)),
+                f.widest(),
                 2.0 * lanes / 1e9,
                 lanes / 1e9,
                 if full {

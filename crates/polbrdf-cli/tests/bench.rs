@@ -36,8 +36,9 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
     }
     let floor_ns = floor["ns_per_element_one_thread"].as_f64().unwrap();
     assert!((floor_ns - sum).abs() <= 1e-9 * sum, "{floor_ns} vs {sum}");
-    // The arithmetic roof: both widths timed where the CPU has AVX2 and FMA, the peaks what the
-    // better width gives (4 or 8 f32 lanes per instruction, 2 flops per fused multiply-add).
+    // The arithmetic roof: every width timed where the CPU has AVX2 and FMA (512 bits where it
+    // has AVX-512F), the peaks what the best width gives (4, 8 or 16 f32 lanes per instruction,
+    // 2 flops per fused multiply-add), and the widest width at that rate (within 25 %).
     let fma = &doc["fma_throughput_one_thread"];
     if doc["cpu"]["simd"]
         .as_str()
@@ -48,11 +49,19 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
             .unwrap_or_else(|| panic!("{fma}"));
         let r256 = fma["fma_per_s_256bit"].as_f64().unwrap();
         assert!(r128 > 0.0 && r256 > 0.0, "{fma}");
+        let r512 = fma["fma_per_s_512bit"].as_f64();
+        assert_eq!(r512.is_some(), doc["cpu"]["simd"] == "avx512", "{fma}");
         let peak64 = fma["peak_f64_flops"].as_f64().unwrap();
-        assert!(
-            (peak64 - (4.0 * r128).max(8.0 * r256)).abs() <= 1e-9 * peak64,
-            "{fma}"
-        );
+        let best = (4.0 * r128).max(8.0 * r256).max(16.0 * r512.unwrap_or(0.0));
+        assert!((peak64 - best).abs() <= 1e-9 * peak64, "{fma}");
+        let widest = fma["widest_full_rate_bits"].as_u64().unwrap();
+        let lanes = (widest / 32) as f64;
+        let rate = match widest {
+            128 => r128,
+            256 => r256,
+            _ => r512.unwrap(),
+        };
+        assert!(lanes * rate >= 0.75 * best, "{fma}");
         assert_eq!(fma["peak_f32_flops"].as_f64().unwrap(), 2.0 * peak64);
         assert_eq!(
             fma["full_width_256bit"].as_bool().unwrap(),
@@ -61,6 +70,30 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
     } else {
         assert!(fma.is_null(), "{fma}");
     }
+    // The write roofline: the better of plain and non-temporal stores (x86-64).
+    let bw = &doc["write_bandwidth"];
+    let plain = bw["plain_bytes_per_s"].as_f64().unwrap();
+    let best = plain.max(bw["non_temporal_bytes_per_s"].as_f64().unwrap_or(0.0));
+    assert!(
+        plain > 0.0 && bw["bytes_per_s"].as_f64().unwrap() == best,
+        "{bw}"
+    );
+    assert_eq!(
+        bw["full_mueller_f32_roofline_evals_per_s"]
+            .as_f64()
+            .unwrap(),
+        best / 64.0
+    );
+    // float32 stores: the paired ratio measured, and whether the engine uses them here.
+    let stores = &doc["f32_non_temporal_stores"];
+    assert!(
+        stores["paired_ratio_one_thread"].as_f64().unwrap() > 0.0,
+        "{stores}"
+    );
+    assert_eq!(
+        stores["used"].as_bool().unwrap(),
+        ::polbrdf::engine::simd::f32_streams_pay()
+    );
     assert!(doc["single_eval_ns"]["kernel"].as_f64().unwrap() > 0.0);
     assert!(doc["single_eval_ns"]["reference"].as_f64().unwrap() > 0.0);
     assert!(doc["cpu"]["model"].as_str().is_some_and(|s| !s.is_empty()));

@@ -130,10 +130,11 @@ fn for_chunks<O: Split>(out: O, f: impl Fn(usize, O) -> bool + Sync) -> bool {
 /// ([`Engine::streaming`], [`Kernel::streaming`]).
 pub const STREAM_MIN: usize = 1 << 16;
 
-/// The floating-point format of the results (docs/model.md §12, "Precision"). Every result is
-/// computed in f64; [`Precision::F32`] rounds each to the nearest f32 as it is stored — half
-/// the memory and the memory traffic of a full-Mueller batch, within `1e-7·F00` of the f64
-/// result. f64 stays the default and the reference (fits use it).
+/// The floating-point format of the results (docs/model.md §12, "Precision"). [`Precision::F32`]
+/// computes the model in f32 where the float32 contract allows (every entry within
+/// `1e-5·F00 + 1e-6·P` of f64, `P` the F00 at the specular direction of the same θi) — half
+/// the memory and the memory traffic of a full-Mueller batch, and faster. f64 stays the
+/// default and the reference (fits use it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Precision {
     /// Double precision (the default).
@@ -224,8 +225,10 @@ impl<'a> Engine<'a> {
     /// and leave the caches alone. On the machine measured (a Zen 4 class AVX-512 host, 2
     /// threads, 2·10⁶ geometries, medians of 11 alternating repeats) that ran 1.02–1.35×
     /// faster than plain stores (docs/model.md §12). Turn it off when the output is read back
-    /// at once and fits the last-level cache. float32 and planar outputs always use plain
-    /// stores (non-temporal ones made float32 slower). The bits are the same either way.
+    /// at once and fits the last-level cache. float32 row-major outputs do the same where
+    /// non-temporal stores pay on this CPU ([`crate::engine::simd::f32_streams_pay`]: they
+    /// made float32 slower on AMD's Zen 3 and Zen 4, faster on an Intel Xeon); planar outputs
+    /// always use plain stores. The bits are the same either way.
     pub fn streaming(mut self, on: bool) -> Self {
         self.stream = on;
         self
@@ -335,8 +338,8 @@ impl<'a> Engine<'a> {
     }
 
     /// As [`Engine::mueller_into`] in single precision ([`Precision::F32`]): the model computed
-    /// in f32, every entry within `1e-5·F00` of f64 ([`Kernel::mueller_f32_into`],
-    /// docs/model.md §12).
+    /// in f32, within the float32 contract (`1e-5·F00 + 1e-6·P` of f64,
+    /// [`Kernel::mueller_f32_into`], docs/model.md §12).
     ///
     /// # Errors
     /// [`crate::Error::LengthMismatch`] as [`Engine::mueller_into`];
@@ -346,8 +349,9 @@ impl<'a> Engine<'a> {
     pub fn mueller_f32_into(&self, batch: &impl Batch, out: &mut [[f32; 16]]) -> Result<()> {
         check_len("out", out.len(), batch.len())?;
         self.check(batch.len())?;
-        // Plain stores (`streaming` does not apply).
-        let kernel = &self.kernel;
+        // Non-temporal stores for large outputs where they pay on this CPU
+        // (`simd::f32_streams_pay`).
+        let kernel = &self.kernel.clone().streaming(self.streams(out.len()));
         let overflow = for_chunks(out, |start, part| {
             kernel.mueller_f32_into(batch, start, part)
         });

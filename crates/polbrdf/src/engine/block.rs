@@ -59,8 +59,9 @@ impl Thresholds for f64 {
 }
 
 /// The f32 kernel's bounds for an accuracy of 1e-5·F00 against f64 (docs/model.md §12,
-/// "Precision"): D's relative error is about `2bθN²·δθN/θN` with `δθN/θN` up to about 2 f32
-/// ulps (measured), so `bθN² ≤ 20`; the Fresnel amplitudes' condition number times f32's ε
+/// "Precision"; beyond them the float32 contract's `1e-6·P` covers D, [`TAIL_KEEP`]): D's
+/// relative error is about `2bθN²·δθN/θN` with `δθN/θN` up to about 2 f32 ulps (measured), so
+/// `bθN² ≤ 20`; the Fresnel amplitudes' condition number times f32's ε
 /// stays near 1e-6 at 20.
 impl Thresholds for f32 {
     const D_EXPONENT_MAX: f32 = 20.0;
@@ -70,6 +71,25 @@ impl Thresholds for f32 {
     const CHECK_FINITE: bool = true;
     const REFINE_D: bool = true;
 }
+
+/// Where D's tail (`y = bθN² > 20`) computed in f32 is kept by the f32 kernel, against the
+/// float32 contract `|ΔF_ij| ≤ 1e-5·F00 + ε·P` with `ε = 1e-6` and `P` the material's F00 at
+/// the specular direction of the same θi (docs/model.md §12, "Precision"): D's relative error
+/// in f32 is about `2y·δθN/θN ≤ 4.8·10⁻⁷·y` (θN within 2 f32 ulps), and every entry of the
+/// surface term is at most its F00, `g·R_F` with `g ∝ D·SO/(cosθi cosθr)` (`paper`:
+/// `/(cosθi cosθr)²`), so the error is at most `P·4.8·10⁻⁷·y·e^{−y}·(cosθi/cosθr)²·r`, `r` the
+/// ratio of the element's `R_F·SO` (and `cos²θN/|s|²`) to the specular direction's, taken
+/// ≤ 100. That is within `ε·P` where `e^{−y}·y·(cosθi/cosθr)² ≤ 1/48`, ≈ 0.02: every tail
+/// element but those with θr within about 10⁻⁷ rad of grazing (and θi far from it) at `y` just
+/// above 20. Those few keep D's f64 refinement.
+pub(crate) const TAIL_KEEP: f64 = 0.02;
+
+/// Where D below f32's comfortable range ([`Thresholds::TINY`], `10⁻³⁰`) is set to 0 by the
+/// f32 kernel instead of sending the element to the f64 path: the whole surface term is then
+/// dropped, an error of at most `P·e^{−y}·(cosθi/cosθr)²·r` (as for [`TAIL_KEEP`], `r ≤ 100`),
+/// within `ε·P = 10⁻⁶·P` where `D/a·(cosθi/cosθr)² ≤ 10⁻⁸`. (Mitsuba's float32 `roughconductor`
+/// returns 0 where `D·cosθ < 10⁻²⁰`.)
+pub(crate) const NEGLIGIBLE: f64 = 1e-8;
 
 /// The angles (rad) of one block.
 pub(crate) struct BlockIn<const N: usize> {
@@ -514,8 +534,22 @@ pub(crate) fn front_q_d<M: Math, const N: usize>(
         let y = dist.exponent(tn);
         let lobe = dist.a() > 0.0 && y > M::F::of(-750.0);
         let tail = lobe && -y > M::F::D_EXPONENT_MAX;
-        f.fallback[j] |= lobe && (d[j] < M::F::TINY || (tail && !M::F::REFINE_D));
-        f.d_tail[j] = tail && M::F::REFINE_D;
+        let under = lobe && d[j] < M::F::TINY;
+        // Under the float32 contract ([`TAIL_KEEP`], [`NEGLIGIBLE`]; without a division):
+        // D's tail as computed stays where `D/a·y·(cosθi/cosθr)² ≤ TAIL_KEEP`; a D below
+        // f32's comfortable range is 0 where `D/a·(cosθi/cosθr)² ≤ NEGLIGIBLE`.
+        let a = geo.facet.get(j);
+        let (lhs, rhs) = (
+            d[j] * (a.cos_i * a.cos_i),
+            M::F::of(dist.a()) * (a.cos_r * a.cos_r),
+        );
+        let keep = lhs * -y <= M::F::of(TAIL_KEEP) * rhs;
+        let drop = M::F::REFINE_D && under && lhs <= M::F::of(NEGLIGIBLE) * rhs;
+        if drop {
+            d[j] = M::F::ZERO;
+        }
+        f.fallback[j] |= (under && !drop) || (tail && !M::F::REFINE_D);
+        f.d_tail[j] = tail && M::F::REFINE_D && !keep && !drop;
     }
 }
 

@@ -63,3 +63,32 @@ pub fn simd_level() -> SimdLevel {
             .unwrap_or(&SimdLevel::Portable)
     })
 }
+
+/// Whether large float32 row-major outputs are written with non-temporal stores on this CPU
+/// (`Kernel::streaming`): a rule by CPU vendor, from measurements (docs/model.md §12,
+/// "Stores"). They paid on an Intel Xeon with AVX-512 (1.23× at 2·10⁶ elements, one thread,
+/// issue 34) and lost on AMD: Zen 3 (0.78–0.83×) and Zen 4 (see docs/model.md §12). So: Intel
+/// with AVX-512 streams, every other CPU (AMD, Intel without AVX-512, unknown) keeps plain
+/// stores, as before. float64 outputs stream on every CPU with AVX (measured to pay on both
+/// vendors).
+pub fn f32_streams_pay() -> bool {
+    static PAYS: OnceLock<bool> = OnceLock::new();
+    *PAYS.get_or_init(|| simd_level() == SimdLevel::Avx512 && vendor() == *b"GenuineIntel")
+}
+
+/// The CPU's vendor string (CPUID leaf 0), or zeros off x86-64.
+fn vendor() -> [u8; 12] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: CPUID leaf 0 exists on every x86-64 CPU (`unsafe` until Rust 1.94).
+        #[allow(unused_unsafe)]
+        let r = unsafe { std::arch::x86_64::__cpuid(0) };
+        let mut v = [0u8; 12];
+        v[..4].copy_from_slice(&r.ebx.to_le_bytes());
+        v[4..8].copy_from_slice(&r.edx.to_le_bytes());
+        v[8..].copy_from_slice(&r.ecx.to_le_bytes());
+        v
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    [0u8; 12]
+}
