@@ -55,14 +55,27 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
     ) from _e
 
 from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
+from .tasks import (
+    AlbedoTable,
+    ContrastStudy,
+    HemisphereMap,
+    Illumination,
+    albedo,
+    contrast,
+    hemisphere,
+)
 
 __all__ = [
     "DEFAULT_DOP_MAX",
+    "AlbedoTable",
     "Atmosphere",
     "Band",
+    "ContrastStudy",
     "Emissivity",
     "Evaluation",
     "FitResult",
+    "HemisphereMap",
+    "Illumination",
     "Material",
     "Radiance",
     "Scene",
@@ -71,12 +84,15 @@ __all__ = [
     "Sun",
     "Surface",
     "__version__",
+    "albedo",
     "brdf",
     "brightness_temperature",
+    "contrast",
     "dolp",
     "emissivity",
     "evaluate",
     "fit",
+    "hemisphere",
     "index",
     "mueller",
     "mueller_directions",

@@ -20,8 +20,10 @@ _Quantity: TypeAlias = Literal[
     "m00", "m01", "m02", "m03", "m10", "m11", "m12", "m13",
     "m20", "m21", "m22", "m23", "m30", "m31", "m32", "m33",
 ]  # fmt: skip
+_RankBy: TypeAlias = Literal["delta-dolp", "polarization-contrast"]
 _VocabularySet: TypeAlias = Literal[
-    "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key"
+    "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key",
+    "rank_by",
 ]
 
 DEFAULT_DOP_MAX: float
@@ -33,12 +35,15 @@ __all__ = [
     "Material",
     "_fit_result_from_state",
     "_material_from_state",
+    "albedo_task",
     "brdf_dolp_flat",
     "brightness_temperature_flat",
+    "contrast_task",
     "derivative_step",
     "emissivity_flat",
     "evaluate_flat",
     "fit_flat",
+    "hemisphere_task",
     "index_flat",
     "mueller_directions_flat",
     "mueller_flat",
@@ -299,6 +304,43 @@ def radiance_scene(
 def read_scene_keys(path: str | PathLike[str]) -> list[tuple[str, float | list[float] | str]]:
     """The keys of a scene file read by polbrdf-io's reader, [(dotted name, value)], file
     names joined to its folder."""
+
+_Light: TypeAlias = tuple[float, float | None, tuple[float, float, float, float] | None]
+_Spectral: TypeAlias = tuple[float | None, str | PathLike[str] | None, float | None]
+
+def contrast_task(
+    target: str | None,
+    background: str | None,
+    scene_file: str | PathLike[str] | None,
+    scene_text: tuple[str, str] | None,
+    light: _Light | None,
+    spectral: _Spectral,
+    grid_deg: tuple[float, float] | None,
+    rank_by: _RankBy | None,
+    top: int | None,
+    min_separation_deg: float | None,
+    max_zenith_deg: float | None,
+    refine: bool | None,
+) -> tuple[list[str], NDArray[np.float64], tuple[int, int], str, list[str]]:
+    """The task layer's contrast study (``polbrdf contrast``): exactly one of a scene file,
+    a scene's text ``(text, source)`` or a collimated ``light`` = (zenith °, azimuth °, stokes);
+    ``None``: the task's default. Returns the columns, the table (zenith-major), the grid's
+    (zeniths, azimuths), ``best.json`` as JSON text and the setup's warnings."""
+
+def hemisphere_task(
+    material: str,
+    light: _Light,
+    spectral: _Spectral,
+    grid_deg: tuple[float, float] | None,
+) -> tuple[list[str], NDArray[np.float64], tuple[int, int]]:
+    """The task layer's hemisphere map (``polbrdf map``): the columns, the table
+    (zenith-major) and the grid's (zeniths, azimuths)."""
+
+def albedo_task(
+    material: str, theta_i_deg: list[float], spectral: _Spectral
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The task layer's albedo (``polbrdf albedo``): theta_i_deg, albedo, surface, volume;
+    an empty ``theta_i_deg`` takes the task's default angles."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

@@ -20,7 +20,8 @@
 //! One module per concern: [`errors`] (exceptions), [`material`] (the `Material` class),
 //! [`buffers`] (flat arrays in, output arrays out), [`evaluation`] (the pBRDF kernels),
 //! [`thermal`] (Planck, emissivity), [`scene`] (the observed radiance, scene files), [`fit`]
-//! (fitting), [`vocabulary`] (the closed sets of names and the defaults, from their Rust
+//! (fitting), [`tasks`] (the task layer's jobs: contrast, maps, albedo), [`vocabulary`]
+//! (the closed sets of names and the defaults, from their Rust
 //! sources); this file only registers what they define.
 
 mod buffers;
@@ -29,6 +30,7 @@ mod evaluation;
 mod fit;
 mod material;
 mod scene;
+mod tasks;
 mod thermal;
 mod vocabulary;
 
@@ -53,6 +55,9 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::radiance_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::read_scene_keys, m)?)?;
     m.add_function(wrap_pyfunction!(vocabulary::vocabulary, m)?)?;
+    m.add_function(wrap_pyfunction!(tasks::contrast_task, m)?)?;
+    m.add_function(wrap_pyfunction!(tasks::hemisphere_task, m)?)?;
+    m.add_function(wrap_pyfunction!(tasks::albedo_task, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,

@@ -3,6 +3,7 @@
 //! format, `polbrdf-fit`'s parameters and quantities. The Python tests compare the stub with
 //! these, so that neither can drift.
 
+use polbrdf::analysis::contrast::Ranking;
 use polbrdf::engine::Precision;
 use polbrdf::{AzimuthTerm, Form};
 use polbrdf_fit::fit::Observable;
@@ -16,7 +17,7 @@ pub(crate) const LAYOUTS: [&str; 2] = ["interleaved", "planar"];
 /// `{set: names}` of every closed set of names the module accepts: `form`, `azimuth_term`
 /// (material keys), `precision`, `layout`, `sky` (the scene files' sky models), `quantity`
 /// (what a fit takes as measured), `parameter` (what a fit frees), `scene_key` (every key and
-/// table of a scene file, dotted).
+/// table of a scene file, dotted), `rank_by` (the scores of a contrast's ranking).
 #[pyfunction]
 pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
     let names = |it: &mut dyn Iterator<Item = &'static str>| it.map(String::from).collect();
@@ -38,5 +39,9 @@ pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
         ),
         ("parameter", names(&mut Param::ALL.iter().map(|p| p.name()))),
         ("scene_key", names(&mut polbrdf_io::scene::key_names())),
+        (
+            "rank_by",
+            names(&mut Ranking::ALL.iter().map(|r| r.as_str())),
+        ),
     ])
 }

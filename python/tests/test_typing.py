@@ -27,6 +27,7 @@ ALIASES = {
     "_SkyModel": "sky",
     "_Parameter": "parameter",
     "_Quantity": "quantity",
+    "_RankBy": "rank_by",
 }
 
 
@@ -62,6 +63,7 @@ def test_literal_is_written_only_in_the_aliases() -> None:
 def test_the_python_layer_s_sets_are_the_extension_s() -> None:
     vocabulary = _polbrdf.vocabulary()
     assert list(typing.get_args(polbrdf.scene.SkyModel)) == vocabulary["sky"]
+    assert list(typing.get_args(polbrdf.tasks.RankBy)) == vocabulary["rank_by"]
     assert vocabulary["layout"] == ["interleaved", "planar"]
 
 

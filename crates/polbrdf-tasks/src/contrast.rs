@@ -89,6 +89,9 @@ pub enum SourceRequest {
     },
     /// In a scene file (its materials unless the request names them).
     Scene(PathBuf),
+    /// In a scene already read and validated by polbrdf-io's reader (an adapter holding the
+    /// scene's text rather than a file, e.g. Python's `polbrdf.Scene`): as [`Self::Scene`].
+    Loaded(Box<Scene>),
 }
 
 /// A contrast study.
@@ -242,6 +245,22 @@ fn collimated_problem(
     Ok((target, background, problem, count))
 }
 
+/// The setup of a scene contrast: both materials, the problem, the setting and the warnings.
+type SceneSetup = (
+    NamedMaterial,
+    NamedMaterial,
+    Contrast,
+    Setting,
+    Vec<Warning>,
+);
+
+/// The setup of a contrast in `scene`.
+fn scene_setup(request: &ContrastRequest, scene: Scene) -> TaskResult<SceneSetup> {
+    let warnings = contrast_warnings(&scene);
+    let (t, b, problem) = scene_problem(request, &scene)?;
+    Ok((t, b, problem, Setting::Scene(Box::new(scene)), warnings))
+}
+
 /// Runs a contrast study. Everything is validated (ranking, grid, source, files, materials)
 /// before anything is computed.
 ///
@@ -254,10 +273,11 @@ pub fn contrast(request: &ContrastRequest) -> TaskResult<ContrastStudy> {
     let (target, background, problem, setting, warnings) = match &request.source {
         SourceRequest::Scene(path) => {
             let _ = view_grid(request.grid_deg)?;
-            let scene = read_scene(path)?;
-            let warnings = contrast_warnings(&scene);
-            let (t, b, problem) = scene_problem(request, &scene)?;
-            (t, b, problem, Setting::Scene(Box::new(scene)), warnings)
+            scene_setup(request, read_scene(path)?)?
+        }
+        SourceRequest::Loaded(scene) => {
+            let _ = view_grid(request.grid_deg)?;
+            scene_setup(request, (**scene).clone())?
         }
         SourceRequest::Collimated { light, spectral } => {
             let light = light.illumination()?;

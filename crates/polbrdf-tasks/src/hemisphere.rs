@@ -50,6 +50,9 @@ impl LightRequest {
     }
 }
 
+/// The default grid steps `(Δθ, Δφ)` of the hemisphere jobs, degrees (16 200 directions).
+pub const DEFAULT_GRID_DEG: (f64, f64) = (1.0, 2.0);
+
 /// The viewing grid of steps `(Δθ, Δφ)` in degrees (the azimuth step rounded to divide 360°).
 ///
 /// # Errors

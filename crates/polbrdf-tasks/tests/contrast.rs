@@ -195,3 +195,24 @@ fn the_request_is_validated_with_its_fields() {
     assert_eq!(d.min_separation_deg, 10.0);
     assert_eq!(d.max_zenith_deg, 80.0);
 }
+
+#[test]
+fn a_loaded_scene_gives_the_study_of_its_file() {
+    let file = example("lwir-scene.toml");
+    let request = |source| ContrastRequest {
+        target: None,
+        background: None,
+        source,
+        grid_deg: (5.0, 10.0),
+        rank: RankRequest::default(),
+    };
+    let from_file = contrast(&request(SourceRequest::Scene(file.clone()))).unwrap();
+    let scene = polbrdf_io::read_scene(&file).unwrap();
+    let loaded = contrast(&request(SourceRequest::Loaded(Box::new(scene)))).unwrap();
+    assert_eq!(from_file.best_json(), loaded.best_json());
+    let bits = |s: &polbrdf_tasks::contrast::ContrastStudy| -> Vec<u64> {
+        s.rows().flatten().map(f64::to_bits).collect()
+    };
+    assert_eq!(bits(&from_file), bits(&loaded));
+    assert!(!bits(&loaded).is_empty());
+}

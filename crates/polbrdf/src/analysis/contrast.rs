@@ -393,6 +393,9 @@ pub enum Ranking {
 }
 
 impl Ranking {
+    /// Every score, in the order the command line lists them.
+    pub const ALL: [Ranking; 2] = [Ranking::DeltaDolp, Ranking::PolarizationContrast];
+
     /// The name used on the command line and in files.
     pub fn as_str(&self) -> &'static str {
         match self {
