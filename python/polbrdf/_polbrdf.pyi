@@ -28,9 +28,12 @@ _VocabularySet: TypeAlias = Literal[
 
 DEFAULT_DOP_MAX: float
 """The clear sky's default maximum degree of polarization δ_max (the core's)."""
+LUT_CONVENTIONS: str
+"""The lookup tables' convention attributes as a JSON object (the task layer's, as `polbrdf lut`)."""
 
 __all__ = [
     "DEFAULT_DOP_MAX",
+    "LUT_CONVENTIONS",
     "FitResult",
     "Material",
     "_fit_result_from_state",

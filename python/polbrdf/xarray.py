@@ -45,11 +45,9 @@ CONTRAST = ("delta_dolp", "intensity_ratio")
 _GEOMETRY = ("wavelength", "theta_i", "theta_r", "dphi")
 _DIMS = ("material", *_GEOMETRY)
 
-#: The attributes that pin the conventions, shared with ``polbrdf lut`` (the CLI embeds the
-#: same file): basis, S3 sign, directions, azimuth, units, model.
-_CONVENTIONS: dict[str, str] = json.loads(
-    (Path(__file__).with_name("lut_conventions.json")).read_text(encoding="utf-8")
-)
+#: The attributes that pin the conventions, shared with ``polbrdf lut`` (one file, owned by the
+#: task layer and compiled into the extension): basis, S3 sign, directions, azimuth, units, model.
+_CONVENTIONS: dict[str, str] = json.loads(_polbrdf.LUT_CONVENTIONS)
 
 _VARIABLE_ATTRS = {
     "mueller": {"units": "sr-1", "long_name": "pBRDF (Mueller-matrix BRDF), psps basis"},

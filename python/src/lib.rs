@@ -62,6 +62,8 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,
     )?;
+    // The lookup tables' conventions, owned by the task layer (`polbrdf lut` writes the same).
+    m.add("LUT_CONVENTIONS", polbrdf_tasks::lut::CONVENTIONS)?;
     m.add_class::<fit::PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit::fit_flat, m)?)?;
     Ok(())
