@@ -23,8 +23,23 @@ use polbrdf::{Geometry, Mueller};
 use std::io::{BufReader, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 
-/// Rows per chunk.
+/// Rows per chunk, at most (a narrow table's chunk).
 pub const CHUNK_ROWS: usize = 1 << 16;
+
+/// Cells (rows × columns) per chunk, at most: a chunk of a wide table holds fewer rows, so
+/// that its memory is bounded by bytes, not by rows (16 MiB of numbers, or of CSV field ends;
+/// a table of 10⁵ columns is read 20 rows at a time). A chunk holds at least one row.
+pub const CHUNK_CELLS: usize = 1 << 21;
+
+/// Bytes of CSV field text per chunk, at most (the chunk ends after the row that reaches it;
+/// a row is at most [`crate::csv_io::MAX_LINE_BYTES`]).
+pub const CHUNK_TEXT_BYTES: usize = 1 << 24;
+
+/// The most rows of a chunk of a table `width` columns wide when `max` are asked for: at most
+/// [`CHUNK_CELLS`] cells, but at least one row (for `max ≥ 1`).
+pub fn chunk_rows(max: usize, width: usize) -> usize {
+    max.min((CHUNK_CELLS / width.max(1)).max(1))
+}
 
 /// A table format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,12 +124,19 @@ pub struct TextRows {
 }
 
 impl TextRows {
+    /// Room for `rows` rows of `width` fields ([`chunk_rows`] bounds the product).
     fn with_capacity(rows: usize, width: usize) -> Self {
+        let cells = rows.saturating_mul(width).min(CHUNK_CELLS);
         Self {
-            text: String::with_capacity(rows * width * 8),
-            ends: Vec::with_capacity(rows * width),
+            text: String::with_capacity(cells * 4),
+            ends: Vec::with_capacity(cells),
             width,
         }
+    }
+
+    /// The bytes of field text held.
+    fn text_len(&self) -> usize {
+        self.text.len()
     }
 
     /// Appends a record (with `width` fields: the reader checks every record's length).
@@ -403,7 +425,9 @@ impl GeometryReader {
         self.wavelength.is_some()
     }
 
-    /// The next chunk of at most `max` rows, or `None` at the end.
+    /// The next chunk of at most `max` rows, or `None` at the end. A chunk of a wide table
+    /// holds fewer rows: at most [`CHUNK_CELLS`] cells ([`chunk_rows`]) and, for CSV, about
+    /// [`CHUNK_TEXT_BYTES`] of text; memory is bounded by the bytes read, never by a row count.
     ///
     /// # Errors
     /// [`Error::Syntax`] (bad CSV or UTF-8, with the line), [`Error::Field`] (a non-number or
@@ -415,12 +439,13 @@ impl GeometryReader {
         }
         let path = self.path.clone();
         let columns = self.columns;
+        let max = chunk_rows(max, self.headers.len());
         let chunk = match &mut self.src {
             Src::Csv(rdr) => {
                 let cap = max.min(CHUNK_ROWS);
                 let mut records = TextRows::with_capacity(cap, self.headers.len());
                 let mut lines = Vec::with_capacity(cap);
-                while lines.len() < max {
+                while lines.len() < max && records.text_len() < CHUNK_TEXT_BYTES {
                     let Some(r) = rdr.next_record()? else {
                         break;
                     };
@@ -993,8 +1018,9 @@ fn arrow_columns(
                             name,
                             recs.field(k, i),
                             &format!(
-                                "the column held numbers in the first {CHUNK_ROWS} rows, so \
-                                 the Arrow output's column is Float64"
+                                "the column held numbers in the first chunk of rows read (up to \
+                                 {CHUNK_ROWS}; fewer in a wide table), so the Arrow output's \
+                                 column is Float64"
                             ),
                         )
                     })
