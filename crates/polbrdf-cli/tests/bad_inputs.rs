@@ -424,6 +424,27 @@ fn arrow_cases() -> Vec<Case> {
     ]
 }
 
+/// A flat band response of `n` rows from 8 µm, 10⁻⁴ µm apart.
+fn long_band(n: usize) -> Vec<u8> {
+    let mut text = String::from("wavelength_um,response\n");
+    for k in 0..n {
+        text.push_str(&format!("{},1\n", 8.0 + k as f64 * 1e-4));
+    }
+    text.into_bytes()
+}
+
+/// A sky table of `n` rows whose zenith angles and azimuths are all distinct (row k at
+/// θ = 90·k/(n−1), φ = 360·k/n): a grid of n² nodes with n given.
+fn sparse_sky_table(n: usize) -> Vec<u8> {
+    let mut text = String::from("theta_deg,phi_deg,s0,s1,s2,s3\n");
+    for k in 0..n {
+        let theta = 90.0 * k as f64 / (n - 1) as f64;
+        let phi = 360.0 * k as f64 / n as f64;
+        text.push_str(&format!("{theta},{phi},1,0,0,0\n"));
+    }
+    text.into_bytes()
+}
+
 fn table() -> Vec<Case> {
     let mut cases = table_common();
     #[cfg(feature = "arrow")]
@@ -554,6 +575,8 @@ fn table_common() -> Vec<Case> {
         radiance_scene("band without response", "[band]\nstep_um = 0.1\n", vec![], 3, &["s.toml:1", "`band`", "response"]),
         radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
         radiance_scene("band step 0", "[band]\nresponse = \"b.csv\"\nstep_um = 0\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "> 0"]),
+        // Issue 35: each band row is a quadrature panel edge (10⁵ rows ran for minutes).
+        radiance_scene("band of 10⁴ + 1 rows", "[band]\nresponse = \"b.csv\"\n[surface]\ntemperature_k = 300\n", vec![("b.csv", long_band(10_001))], 3, &["s.toml:2", "`band.response`", "b.csv:10002", "`wavelength_um`", "at most 10⁴ rows"]),
         radiance_scene("scene band file missing", "[band]\nresponse = \"nob.csv\"\n", vec![], 3, &["s.toml:2", "`band.response`", "nob.csv", "cannot read"]),
         radiance_scene("scene band file malformed", "[band]\nresponse = \"b.csv\"\n", vec![("b.csv", t("wavelength_um,response\n8,1\n12,lots\n"))], 3, &["s.toml:2", "`band.response`", "b.csv:3", "`response`", "lots"]),
         case("band out of a spectral material's data (radiance)", vec![("s.toml", t("[band]\nresponse = \"far.csv\"\n[surface]\ntemperature_k = 300\n")), ("far.csv", t(FAR_BAND)), ("m.toml", t(SPECTRAL))],
@@ -578,6 +601,11 @@ fn table_common() -> Vec<Case> {
         radiance_scene("scene unknown key in [sun]", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\nelevation_deg = 60\n", vec![], 3, &["s.toml:5", "`sun.elevation_deg`", "unknown key in [sun]", "zenith_deg, azimuth_deg, irradiance, stokes"]),
         radiance_scene("sun on the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 90\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 90", "above the horizon", "[0, 90)"]),
         radiance_scene("sun below the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 95\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 95", "above the horizon"]),
+        // Issue 35 item 7: the documented bound panicked ("internal error", exit 1).
+        radiance_scene("sun azimuth at the bound 1e8 (valid)", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = 1e8\nirradiance = 1000\n[sky]\nmodel = \"cie-clear\"\nirradiance = 80\n", vec![], 0, &[]),
+        radiance_scene("sun azimuth -1e8, no sky (valid)", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = -1e8\nirradiance = 1000\n", vec![], 0, &[]),
+        radiance_scene("sun azimuth beyond the bound", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = 1.5e8\nirradiance = 1000\n", vec![], 3, &["s.toml:4", "`sun.azimuth_deg`", "150000000", "1e8"]),
+        radiance_scene("sun azimuth 1e300", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = -1e300\nirradiance = 1000\n", vec![], 3, &["s.toml:4", "`sun.azimuth_deg`", "1e8"]),
         radiance_scene("sun without zenith", "wavelength_um = 0.55\n[sun]\nirradiance = 1000\n", vec![], 3, &["s.toml:2", "`sun`", "missing required key `zenith_deg`"]),
         radiance_scene("negative sun irradiance", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = -1000\n", vec![], 3, &["s.toml:4", "`sun.irradiance`", "-1000", ">= 0"]),
         radiance_scene("sun Stokes vector of 3 numbers", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, 0, 0]\n", vec![], 3, &["s.toml:5", "`sun.stokes`", "expected 4 numbers", "got 3"]),
@@ -587,6 +615,10 @@ fn table_common() -> Vec<Case> {
         radiance_scene("cie-clear dop_max 1.5", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\n[sky]\nmodel = \"cie-clear\"\nirradiance = 50\ndop_max = 1.5\n", vec![], 3, &["s.toml:8", "`sky.dop_max`", "1.5", "[0, 1]"]),
         radiance_scene("sky table file missing", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"nosky.csv\"\n", vec![], 3, &["s.toml:4", "`sky.file`", "nosky.csv", "cannot read"]),
         radiance_scene("sky table with a hole", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,180,1,0,0,0\n45,0,1,0,0,0\n90,0,1,0,0,0\n90,180,1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv: the sky table has a hole", "(theta_deg = 45, phi_deg = 180)", "[0, 45, 90] × azimuths [0, 180]"]),
+        // Issue 35 item 3: 10⁵ rows of distinct angles span 10¹⁰ nodes; the grid was allocated
+        // (160 GB, exit 134) before the hole was found.
+        radiance_scene("sky table of 10⁵ rows, each its own zenith and azimuth", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", sparse_sky_table(100_000))], 3, &["s.toml:4", "`sky.file`", "the sky table has a hole", "(theta_deg = 0, phi_deg = 0.0036)", "10000000000 nodes", "9999900000 of them are missing (100000 rows given)"]),
+        radiance_scene("sky profile of radiance 1e308", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("zenith_deg,radiance\n0,1\n90,1e308\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`radiance`", "1e150"]),
         radiance_scene("sky table with a node given twice", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n90,0,2,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:4", "(theta_deg = 90, phi_deg = 0) is given twice", "lines 3 and 4"]),
         radiance_scene("sky table not reaching zenith 90", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n60,0,1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv", "from 0° to 90°"]),
         radiance_scene("sky table with s0 below 0", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,-1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`s0`", "-1", ">= 0"]),
@@ -789,4 +821,56 @@ fn walk(dir: &Path) -> Vec<String> {
         }
     }
     out
+}
+
+/// A wide geometry table: the angle columns, then `width - 4` more, and `rows` rows.
+fn wide_csv(width: usize, rows: usize) -> String {
+    let mut names: Vec<String> = GEO
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .map(Into::into)
+        .collect();
+    names.extend((4..width).map(|i| format!("c{i}")));
+    let row = format!("30,0,30,180{}", ",1".repeat(width - 4));
+    let mut text = names.join(",");
+    for _ in 0..rows {
+        text.push('\n');
+        text.push_str(&row);
+    }
+    text + "\n"
+}
+
+/// Issue 35 item 2: `eval` of a wide CSV under a 1 GiB address-space limit. The reader reserved
+/// 65 536 rows × columns cells before reading a row: 1000 columns aborted (exit 134) under the
+/// limit, the README's 10⁵-column header (26 GB asked for 50 004 columns) everywhere. A chunk
+/// is now bounded by cells and bytes, and every row comes through.
+#[test]
+fn a_wide_csv_runs_in_bounded_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    for (width, rows) in [(1000, 3), (100_004, 2)] {
+        let input = dir.path().join(format!("w{width}.csv"));
+        std::fs::write(&input, wide_csv(width, rows)).unwrap();
+        let output = dir.path().join(format!("o{width}.csv"));
+        let out = crate::common::polbrdf_limited(
+            1 << 20,
+            &[
+                "eval",
+                "--material",
+                "paint",
+                "--input",
+                input.to_str().unwrap(),
+                "--output",
+                output.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{width}: {}", stderr(&out));
+        let text = std::fs::read_to_string(&output).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), rows + 1, "{width}");
+        for l in &lines {
+            assert_eq!(l.split(',').count(), width + 19, "{width}");
+        }
+    }
 }

@@ -28,7 +28,10 @@ pub enum TaskError {
 impl TaskError {
     /// A request value out of range or malformed.
     pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Self {
-        TaskError::Invalid { field: field.into(), message: message.into() }
+        TaskError::Invalid {
+            field: field.into(),
+            message: message.into(),
+        }
     }
 }
 
