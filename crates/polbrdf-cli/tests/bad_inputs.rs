@@ -749,6 +749,10 @@ fn table_common() -> Vec<Case> {
         export("export: grid of one node", &["--grid", "1,46,91"], 3, &["--grid", "2–4096"]),
         case("export: unknown material", vec![], &["export", "--material", "nope", "--out", "{d}/out.json"], 3, &["nope"]),
         case("export: directory missing", vec![], &["export", "--material", "paint", "--grid", "3,3,3", "--out", "{d}/no/out.pbsdf"], 4, &["out.pbsdf", "cannot write"]),
+        // Issue 35: files read whole are bounded (16 MiB), not read until memory runs out.
+        case("material /dev/zero", vec![("g.csv", t(GEO))], &["eval", "--material", "/dev/zero", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 3, &["/dev/zero", "longer than 16 MiB"]),
+        case("scene /dev/zero", vec![], &["radiance", "--material", "paint", "--scene", "/dev/zero", "--theta-deg", "0", "--output", "{d}/out.csv"], 3, &["/dev/zero", "longer than 16 MiB"]),
+        eval_material("index /dev/zero", "index = \"/dev/zero\"\nsigma_deg = 5\n", 3, &["m.toml:1", "`index`", "/dev/zero", "longer than 16 MiB"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),
@@ -873,4 +877,65 @@ fn a_wide_csv_runs_in_bounded_memory() {
             assert_eq!(l.split(',').count(), width + 19, "{width}");
         }
     }
+}
+
+/// Issue 35: a scene or material may name any file; one that is not what it claims is an
+/// error naming the file, without its content (the messages quoted the first line of
+/// `/etc/passwd`).
+#[test]
+fn a_named_file_of_another_kind_is_not_echoed() {
+    const SECRET: &str = "root:x:0:0:secret-hash:/root:/bin/bash";
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap().to_string();
+    std::fs::write(
+        dir.path().join("passwd"),
+        format!("{SECRET}\ndaemon:x:1:1\n"),
+    )
+    .unwrap();
+    let scenes = [
+        "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"passwd\"\n",
+        "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"passwd\"\n",
+        "[band]\nresponse = \"passwd\"\n[surface]\ntemperature_k = 300\n",
+    ];
+    for (k, scene) in scenes.iter().enumerate() {
+        let s = format!("{d}/s{k}.toml");
+        std::fs::write(&s, scene).unwrap();
+        let out = polbrdf(&[
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            &s,
+            "--theta-deg",
+            "0",
+            "--output",
+            &format!("{d}/out.csv"),
+        ]);
+        let msg = stderr(&out);
+        assert_eq!(out.status.code(), Some(3), "{scene}: {msg}");
+        assert!(
+            msg.contains("passwd") && msg.contains("not shown"),
+            "{scene}: {msg}"
+        );
+        assert!(
+            !msg.contains("root:x") && !msg.contains("secret"),
+            "{scene}: {msg}"
+        );
+    }
+    let m = format!("{d}/m.toml");
+    std::fs::write(&m, "index = \"passwd\"\nsigma_deg = 5\n").unwrap();
+    std::fs::write(dir.path().join("g.csv"), GEO_WL).unwrap();
+    let out = polbrdf(&[
+        "eval",
+        "--material",
+        &m,
+        "--input",
+        &format!("{d}/g.csv"),
+        "--output",
+        &format!("{d}/out.csv"),
+    ]);
+    let msg = stderr(&out);
+    assert_eq!(out.status.code(), Some(3), "{msg}");
+    assert!(msg.contains("passwd"), "{msg}");
+    assert!(!msg.contains("root:x") && !msg.contains("secret"), "{msg}");
 }

@@ -1,7 +1,7 @@
 //! Geometry CSV in, result CSV out (the `polbrdf eval` contract in the README).
 
 use crate::error::{Error, Result};
-use polbrdf::{Geometry, Mueller, Stokes};
+use polbrdf::{Geometry, Stokes};
 use std::collections::hash_map::{Entry, HashMap};
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
@@ -44,20 +44,44 @@ pub struct GeometryTable {
 /// The optional wavelength column of geometry and measurement files (µm).
 pub const WAVELENGTH_COLUMN: &str = "wavelength_um";
 
+/// The most bytes of a file read whole ([`read_all`]: material, scene, `lut` configuration,
+/// refractive-index and whole `.npy` files): 16 MiB, far above any such file (the library's
+/// largest index file is under 100 kB), so that a device or a huge file named by mistake
+/// (`--material /dev/zero`) is an error naming it instead of a read until memory runs out.
+pub const MAX_WHOLE_FILE_BYTES: u64 = 16 << 20;
+
 /// The bytes of `path`, or of standard input for `-`, read whole (for the small files only:
-/// material, scene and refractive-index files; every CSV reader streams, [`CsvReader`]).
+/// material, scene and refractive-index files; every CSV reader streams, [`CsvReader`]), at
+/// most [`MAX_WHOLE_FILE_BYTES`].
+///
+/// # Errors
+/// [`Error::Read`]; [`Error::File`] for a file longer than the bound.
 pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     let read_err = |source| Error::Read {
         path: path.to_path_buf(),
         source,
     };
-    if path.as_os_str() == "-" {
-        let mut buf = Vec::new();
-        std::io::stdin().read_to_end(&mut buf).map_err(read_err)?;
-        Ok(buf)
+    let src: Box<dyn Read> = if path.as_os_str() == "-" {
+        Box::new(std::io::stdin())
     } else {
-        std::fs::read(path).map_err(read_err)
+        Box::new(std::fs::File::open(path).map_err(read_err)?)
+    };
+    let mut buf = Vec::new();
+    // One byte past the bound tells a file at the bound from a longer one.
+    src.take(MAX_WHOLE_FILE_BYTES + 1)
+        .read_to_end(&mut buf)
+        .map_err(read_err)?;
+    if buf.len() as u64 > MAX_WHOLE_FILE_BYTES {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "longer than {} MiB: this file is read whole, and no file of its kind is that \
+                 long (is it the file meant?)",
+                MAX_WHOLE_FILE_BYTES >> 20
+            ),
+        });
     }
+    Ok(buf)
 }
 
 /// The 1-based line of byte `pos` of `text` (for TOML spans).
@@ -532,6 +556,18 @@ pub(crate) fn check_header(
         .copied()
         .filter(|r| position(r).is_none())
         .collect();
+    if missing.len() == required.len() {
+        // Not a table of this kind (a scene may name any file, `/etc/passwd`): its first line
+        // is not shown.
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "missing column(s) {}: the first line names none of them, so this is not a \
+                 table of that kind (its content is not shown)",
+                missing.join(", "),
+            ),
+        });
+    }
     if !missing.is_empty() {
         return Err(Error::File {
             path: path.to_path_buf(),
@@ -1182,11 +1218,11 @@ impl CsvTable {
 }
 
 /// The result CSV of `polbrdf eval`: the input columns unchanged, then `brdf, dolp, aolp_deg,
-/// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's pBRDF in `pbrdf`.
+/// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's result in `pbrdf`.
 ///
 /// # Errors
 /// [`Error::File`] when an input column has the name of an output column.
-pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> {
+pub fn results_csv(table: &GeometryTable, pbrdf: &[crate::stream::RowResult]) -> Result<Vec<u8>> {
     let extra = result_columns();
     if let Some(clash) = table.headers.iter().find(|h| extra.contains(h)) {
         return Err(Error::File {

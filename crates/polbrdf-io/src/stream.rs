@@ -637,16 +637,26 @@ fn checked_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> {
     crate::csv_io::check_wavelength(path, line, v)
 }
 
-/// The 19 numbers `eval` appends for one pBRDF: brdf, dolp, aolp_deg, then F row-major.
-pub fn result_values(f: &Mueller) -> [f64; 19] {
-    // The reflected Stokes vector for unpolarized input, F·(1, 0, 0, 0): its DoLP and AoLP as
-    // the core defines them.
-    let s = f.first_column();
+/// What `eval` computes for one row: the pBRDF, and its BRDF, DoLP and AoLP (rad) as the core
+/// defines them once, by `polbrdf::Engine::brdf_dolp_aolp_into` — the numbers of `lut` and of
+/// the Python module, bit for bit (the DoLP of the matrix's first column through `Stokes::dolp`
+/// differed from them in the last bit in about a third of the rows: issue 35).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowResult {
+    /// The pBRDF F (psps basis, sr⁻¹).
+    pub pbrdf: Mueller,
+    /// BRDF, DoLP and AoLP (rad) of F·(1, 0, 0, 0), from the engine.
+    pub brdf_dolp_aolp: [f64; 3],
+}
+
+/// The 19 numbers `eval` appends for one row: brdf, dolp, aolp_deg, then F row-major.
+pub fn result_values(r: &RowResult) -> [f64; 19] {
+    let [brdf, dolp, aolp] = r.brdf_dolp_aolp;
     let mut v = [0.0; 19];
-    v[0] = f.m00();
-    v[1] = s.dolp();
-    v[2] = s.aolp().to_degrees();
-    v[3..].copy_from_slice(&f.to_row_major());
+    v[0] = brdf;
+    v[1] = dolp;
+    v[2] = aolp.to_degrees();
+    v[3..].copy_from_slice(&r.pbrdf.to_row_major());
     v
 }
 
@@ -821,12 +831,12 @@ impl ResultWriter {
         }
     }
 
-    /// Writes one chunk's rows with their pBRDFs.
+    /// Writes one chunk's rows with their results ([`RowResult`], one per row).
     ///
     /// # Errors
     /// [`Error::Write`]; [`Error::Field`] naming the input's line and column when a `.npy`
     /// output is given a CSV column that is not a number.
-    pub fn write_chunk(&mut self, chunk: &GeometryChunk, pbrdf: &[Mueller]) -> Result<()> {
+    pub fn write_chunk(&mut self, chunk: &GeometryChunk, pbrdf: &[RowResult]) -> Result<()> {
         let shown = self.shown();
         let werr = |source| Error::Write {
             path: shown.clone(),
@@ -992,7 +1002,7 @@ fn chunk_kinds(
 #[cfg(feature = "arrow")]
 fn arrow_columns(
     chunk: &GeometryChunk,
-    pbrdf: &[Mueller],
+    pbrdf: &[RowResult],
     kinds: &[Kind],
     headers: &[String],
     input: &Path,
@@ -1059,7 +1069,7 @@ fn output_number(input: &Path, line: usize, name: &str, text: &str, why: &str) -
 }
 
 /// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
-fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &Mueller) {
+fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &RowResult) {
     match columns {
         Passthrough::Text(recs) => {
             for field in recs.row(k) {
@@ -1118,7 +1128,7 @@ fn push_csv_field(line: &mut Vec<u8>, field: &str) {
 fn fill_npy_rows(
     row: &mut Vec<f64>,
     chunk: &GeometryChunk,
-    pbrdf: &[Mueller],
+    pbrdf: &[RowResult],
     headers: &[String],
     input: &Path,
 ) -> Result<()> {
