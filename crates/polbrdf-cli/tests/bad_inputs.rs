@@ -420,6 +420,11 @@ fn arrow_cases() -> Vec<Case> {
         eval_arrow("arrow: a block beyond the file", "g.arrow", include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(), 3, &["g.arrow", "block 1", "lies outside the file"]),
         eval_arrow("arrow: direction component NaN", "g.arrow", arrow_bytes(&[("w_i_x", f(vec![Some(0.0)])), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(f64::NAN)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], false, 8), 3, &["g.arrow:1:", "`w_r_x`", "finite"]),
         eval_arrow("arrow: text direction column", "g.arrows", arrow_bytes(&[("w_i_x", Arc::new(StringArray::from(vec!["0"])) as ArrayRef), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(0.0)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], true, 8), 3, &["g.arrows:1:", "`w_i_x`", "must hold numbers"]),
+        // Issue 35: pandas' Feather files are compressed (LZ4 by default): refused with the
+        // command that re-saves them (it named a Cargo feature).
+        eval_arrow("arrow: pandas' LZ4 Feather", "g.feather", include_bytes!("data/pandas_lz4.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (LZ4)", "compression=\"uncompressed\""]),
+        eval_arrow("arrow: pandas' ZSTD Feather", "g.feather", include_bytes!("data/pandas_zstd.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (ZSTD)", "compression=\"uncompressed\""]),
+        eval_arrow("arrow: pandas' uncompressed Feather (valid)", "g.feather", include_bytes!("data/pandas_uncompressed.feather").to_vec(), 0, &[]),
         eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
     ]
 }
