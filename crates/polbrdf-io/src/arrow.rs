@@ -7,7 +7,7 @@
 //! and column. Output columns are Float64, except text passed through, which stays text.
 
 use crate::error::{Error, Result};
-pub use crate::stream::{Column, Kind};
+pub use crate::table::{Column, Kind};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{
     Float32Type, Float64Type, Int16Type, Int32Type, Int64Type, Int8Type, UInt16Type, UInt32Type,

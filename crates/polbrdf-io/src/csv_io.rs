@@ -1222,7 +1222,7 @@ impl CsvTable {
 ///
 /// # Errors
 /// [`Error::File`] when an input column has the name of an output column.
-pub fn results_csv(table: &GeometryTable, pbrdf: &[crate::stream::RowResult]) -> Result<Vec<u8>> {
+pub fn results_csv(table: &GeometryTable, pbrdf: &[crate::table::RowResult]) -> Result<Vec<u8>> {
     let extra = result_columns();
     if let Some(clash) = table.headers.iter().find(|h| extra.contains(h)) {
         return Err(Error::File {
@@ -1233,7 +1233,7 @@ pub fn results_csv(table: &GeometryTable, pbrdf: &[crate::stream::RowResult]) ->
     let mut t = CsvTable::new(table.headers.iter().chain(extra.iter()));
     for (row, f) in table.rows.iter().zip(pbrdf) {
         let mut fields: Vec<String> = row.clone();
-        fields.extend(crate::stream::result_values(f).iter().map(|v| fmt_f64(*v)));
+        fields.extend(crate::table::result_values(f).iter().map(|v| fmt_f64(*v)));
         t.fields(fields);
     }
     Ok(t.into_bytes())

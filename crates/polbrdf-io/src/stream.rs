@@ -18,8 +18,9 @@ use crate::csv_io::{
 };
 use crate::error::{Error, Result};
 use crate::npy::{NpyReader, NpyWriter};
+pub use crate::table::{result_values, Column, Kind, RowResult};
 use crate::write::Output;
-use polbrdf::{Geometry, Mueller};
+use polbrdf::Geometry;
 use std::io::{BufReader, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 
@@ -84,34 +85,6 @@ fn no_arrow(path: &Path) -> Error {
                   use CSV or .npy, or rebuild with `--features arrow`"
             .into(),
     }
-}
-
-/// One input column of a chunk, column-major (Arrow input).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Column {
-    /// Numbers (any numeric Arrow type, as f64).
-    Numbers(Vec<f64>),
-    /// Text, passed through as written.
-    Text(Vec<String>),
-}
-
-impl Column {
-    /// The kind of the column.
-    pub fn kind(&self) -> Kind {
-        match self {
-            Column::Numbers(_) => Kind::Number,
-            Column::Text(_) => Kind::Text,
-        }
-    }
-}
-
-/// The kind of a column: numbers or text.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    /// Numbers (Float64 in an Arrow output).
-    Number,
-    /// Text (Utf8 in an Arrow output).
-    Text,
 }
 
 /// The CSV fields of a chunk's rows in one text buffer (no allocation per row).
@@ -635,29 +608,6 @@ fn numeric_geometry(path: &Path, line: usize, deg: [f64; 4]) -> Result<Geometry>
 
 fn checked_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> {
     crate::csv_io::check_wavelength(path, line, v)
-}
-
-/// What `eval` computes for one row: the pBRDF, and its BRDF, DoLP and AoLP (rad) as the core
-/// defines them once, by `polbrdf::Engine::brdf_dolp_aolp_into` — the numbers of `lut` and of
-/// the Python module, bit for bit (the DoLP of the matrix's first column through `Stokes::dolp`
-/// differed from them in the last bit in about a third of the rows: issue 35).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RowResult {
-    /// The pBRDF F (psps basis, sr⁻¹).
-    pub pbrdf: Mueller,
-    /// BRDF, DoLP and AoLP (rad) of F·(1, 0, 0, 0), from the engine.
-    pub brdf_dolp_aolp: [f64; 3],
-}
-
-/// The 19 numbers `eval` appends for one row: brdf, dolp, aolp_deg, then F row-major.
-pub fn result_values(r: &RowResult) -> [f64; 19] {
-    let [brdf, dolp, aolp] = r.brdf_dolp_aolp;
-    let mut v = [0.0; 19];
-    v[0] = brdf;
-    v[1] = dolp;
-    v[2] = aolp.to_degrees();
-    v[3..].copy_from_slice(&r.pbrdf.to_row_major());
-    v
 }
 
 enum Sink {
