@@ -482,6 +482,105 @@ def _add_contrast(ds: xr.Dataset, pair: tuple[str, str], with_stderr: bool) -> N
 # --- tables of the command line ------------------------------------------------------------
 
 
+#: The most bytes of ``attrs.json`` read (as the CLI's bound on files read whole).
+_MAX_SIDECAR_BYTES = 16 << 20
+
+
+def _sidecar_json(meta_path: Path) -> Any:
+    """``attrs.json``, parsed: at most 16 MiB, valid JSON of bounded nesting."""
+    with open(meta_path, "rb") as f:
+        raw = f.read(_MAX_SIDECAR_BYTES + 1)
+    if len(raw) > _MAX_SIDECAR_BYTES:
+        raise ValueError(f"{meta_path}: longer than 16 MiB: not a polbrdf lut sidecar")
+    try:
+        return json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as e:
+        raise ValueError(f"{meta_path}: not UTF-8 text ({e.reason})") from None
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{meta_path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
+    except RecursionError:
+        raise ValueError(f"{meta_path}: JSON nested too deeply: not a polbrdf lut sidecar") from None
+
+
+def _sidecar_bad(meta_path: Path, key: str, what: str) -> ValueError:
+    return ValueError(f"{meta_path}: not a polbrdf lut sidecar: `{key}` {what}")
+
+
+def _sidecar_coords(meta_path: Path, coords: Any, dims: list[str]) -> dict[str, list]:
+    """The coordinates: material names (distinct strings), each geometry axis finite and
+    strictly increasing."""
+    if not isinstance(coords, dict) or any(d not in coords for d in dims):
+        raise _sidecar_bad(meta_path, "coords", f"must map each of {dims} to a list")
+    names = coords["material"]
+    if not (isinstance(names, list) and all(isinstance(n, str) for n in names)):
+        raise _sidecar_bad(meta_path, "coords.material", "must be a list of names")
+    if len(set(names)) != len(names):
+        raise _sidecar_bad(meta_path, "coords.material", "names a material twice")
+    out: dict[str, list] = {"material": names}
+    for d in _GEOMETRY:
+        v = coords[d]
+        ok = isinstance(v, list) and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) for x in v
+        )
+        if not ok:
+            raise _sidecar_bad(meta_path, f"coords.{d}", "must be a list of numbers")
+        a = np.asarray(v, dtype=np.float64)
+        if not np.all(np.isfinite(a)):
+            raise _sidecar_bad(meta_path, f"coords.{d}", "holds a value that is not finite")
+        if np.any(np.diff(a) <= 0):
+            raise _sidecar_bad(meta_path, f"coords.{d}", "must increase strictly")
+        out[d] = v
+    return out
+
+
+def _sidecar_table(meta_path: Path, folder: Path, name: Any) -> Path:
+    """The table file ``attrs.json`` names: a plain file name inside the folder."""
+    if not isinstance(name, str) or name in ("", ".", "..") or Path(name).name != name:
+        raise _sidecar_bad(meta_path, "table", "must name a file inside the folder")
+    return folder / name
+
+
+def _read_sidecar(folder: Path, meta_path: Path) -> tuple:
+    """``attrs.json``, checked: each key of the type and range ``polbrdf lut`` writes, else a
+    ``ValueError`` naming the file and the key."""
+    meta = _sidecar_json(meta_path)
+    if not isinstance(meta, dict):  # a bad file, not a bad argument: ValueError, as documented
+        raise ValueError(f"{meta_path}: not a polbrdf lut sidecar: not a JSON object")  # noqa: TRY004
+    for key in ("format", "dims", "shape", "columns", "coords", "attrs", "quantities", "table"):
+        if key not in meta:
+            raise _sidecar_bad(meta_path, key, "is missing")
+    if meta["format"] != "polbrdf-lut 1":
+        raise _sidecar_bad(meta_path, "format", f"is {meta['format']!r}, not 'polbrdf-lut 1'")
+    dims, shape = meta["dims"], meta["shape"]
+    if dims != list(_DIMS):
+        raise _sidecar_bad(meta_path, "dims", f"must be {list(_DIMS)}")
+    if not (
+        isinstance(shape, list)
+        and len(shape) == len(_DIMS)
+        and all(isinstance(n, int) and not isinstance(n, bool) and n >= 1 for n in shape)
+    ):
+        raise _sidecar_bad(meta_path, "shape", f"must be {len(_DIMS)} counts >= 1")
+    columns, quantities, attrs = meta["columns"], meta["quantities"], meta["attrs"]
+    if not (isinstance(columns, list) and all(isinstance(c, str) for c in columns)):
+        raise _sidecar_bad(meta_path, "columns", "must be a list of names")
+    if not (isinstance(quantities, list) and quantities and set(quantities) <= set(QUANTITIES)):
+        raise _sidecar_bad(meta_path, "quantities", f"must be a list of {list(QUANTITIES)}")
+    for q in quantities:
+        need = [f"m{i}{j}" for i in range(4) for j in range(4)] if q == "mueller" else [
+            "aolp_deg" if q == "aolp" else q
+        ]
+        at = columns.index(need[0]) if need[0] in columns else -1
+        if at < 0 or columns[at : at + len(need)] != need:
+            raise _sidecar_bad(meta_path, "columns", f"lack the column(s) of quantity {q!r}")
+    if not isinstance(attrs, dict):
+        raise _sidecar_bad(meta_path, "attrs", "must be a JSON object")
+    coords = _sidecar_coords(meta_path, meta["coords"], dims)
+    if [len(coords[d]) for d in dims] != shape:
+        raise _sidecar_bad(meta_path, "shape", f"{shape} does not match the coordinates")
+    table = _sidecar_table(meta_path, folder, meta["table"])
+    return tuple(shape), columns, coords, dict(attrs), quantities, table
+
+
 def open_lut(path: str | os.PathLike) -> xr.Dataset:
     """Open a table written by ``polbrdf lut --config lut.toml --out DIR`` as the Dataset
     :func:`lut` gives for the same configuration: same variables, dimensions, coordinates and
@@ -497,23 +596,11 @@ def open_lut(path: str | os.PathLike) -> xr.Dataset:
     """
     folder = Path(path)
     meta_path = folder / "attrs.json"
+    shape, columns, coords, attrs, quantities, table_path = _read_sidecar(folder, meta_path)
     try:
-        meta = json.loads(meta_path.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{meta_path}:{e.lineno}:{e.colno}: not valid JSON: {e.msg}") from None
-    try:
-        if meta["format"] != "polbrdf-lut 1":
-            raise ValueError(f"unknown format {meta['format']!r}")
-        dims, shape, columns = list(meta["dims"]), tuple(meta["shape"]), list(meta["columns"])
-        coords, attrs, quantities = meta["coords"], dict(meta["attrs"]), list(meta["quantities"])
-        table_path = folder / meta["table"]
-        if dims != list(_DIMS) or [len(coords[d]) for d in dims] != list(shape):
-            raise ValueError(f"dims {dims} and coordinates do not match the shape {shape}")
-    except (KeyError, TypeError, ValueError) as e:
-        raise ValueError(
-            f"{meta_path}: not a polbrdf lut sidecar: {type(e).__name__}: {e}"
-        ) from None
-    table = np.load(table_path, mmap_mode="r")
+        table = np.load(table_path, mmap_mode="r")
+    except (EOFError, ValueError) as e:  # a truncated or malformed .npy file
+        raise ValueError(f"{table_path}: not a .npy table: {type(e).__name__}: {e}") from None
     fields = table.dtype.names or ()
     if list(fields) != columns or any(table.dtype[f] != np.dtype("<f8") for f in fields):
         raise ValueError(f"{table_path}: columns {list(fields)}, attrs.json says {columns}")

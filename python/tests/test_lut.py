@@ -463,6 +463,90 @@ def test_open_lut_refuses_what_is_no_table(tmp_path) -> None:
         polbrdf.xarray.open_lut(tmp_path)
 
 
+def _small_table(folder, theta_r=(0.0,), edit=None) -> None:
+    """A valid one-material table of ``brdf`` written by hand, ``edit`` applied to attrs.json."""
+    folder.mkdir(exist_ok=True)
+    shape = [1, 1, 1, len(theta_r), 1]
+    np.save(folder / "table.npy", np.zeros(len(theta_r), dtype=[("brdf", "<f8")]))
+    meta = {
+        "format": "polbrdf-lut 1",
+        "dims": ["material", "wavelength", "theta_i", "theta_r", "dphi"],
+        "shape": shape,
+        "columns": ["brdf"],
+        "coords": {"material": ["a"], "wavelength": [0.5], "theta_i": [0.0],
+                   "theta_r": list(theta_r), "dphi": [0.0]},
+        "attrs": {},
+        "quantities": ["brdf"],
+        "table": "table.npy",
+    }  # fmt: skip
+    if edit:
+        edit(meta)
+    (folder / "attrs.json").write_text(json.dumps(meta))
+
+
+def test_open_lut_refuses_a_tampered_folder_naming_file_and_key(tmp_path) -> None:
+    """Issue 35: a tampered folder raised EOFError, TypeError or RecursionError, opened a
+    table outside the folder, and accepted NaN or unsorted coordinates; each is a ValueError
+    naming the file and the key."""
+    ok = tmp_path / "ok"
+    _small_table(ok)
+    assert float(polbrdf.xarray.open_lut(ok).brdf.values.ravel()[0]) == 0.0
+    (tmp_path / "outside.npy").write_bytes((ok / "table.npy").read_bytes())
+    cases = [
+        ("table outside", {"table": "../outside.npy"}, "`table`"),
+        ("table absolute", {"table": str(tmp_path / "outside.npy")}, "`table`"),
+        ("table a number", {"table": 5}, "`table`"),
+        ("shape of strings", {"shape": ["1", 1, 1, 1, 1]}, "`shape`"),
+        ("shape too long", {"shape": [1, 1, 1, 1, 1, 1]}, "`shape`"),
+        ("coords a string", {"coords": "x"}, "`coords`"),
+        ("theta_i a string", {"coords.theta_i": "0"}, "`coords.theta_i`"),
+        ("theta_r NaN", {"coords.theta_r": [float("nan")]}, "`coords.theta_r`"),
+        ("dphi infinite", {"coords.dphi": [float("inf")]}, "`coords.dphi`"),
+        ("material twice", {"coords.material": ["a", "a"], "shape": [2, 1, 1, 1, 1]},
+         "`coords.material`"),
+        ("unknown quantity", {"quantities": ["nope"]}, "`quantities`"),
+        ("quantity without its column", {"quantities": ["dolp"]}, "`columns`"),
+        ("attrs a list", {"attrs": []}, "`attrs`"),
+        ("format missing", {"format": None}, "`format`"),
+    ]  # fmt: skip
+
+    def edit_with(changes):
+        def edit(meta):
+            for k, v in changes.items():
+                if k.startswith("coords."):
+                    meta["coords"][k[7:]] = v
+                elif v is None:
+                    del meta[k]
+                else:
+                    meta[k] = v
+
+        return edit
+
+    for i, (what, changes, key) in enumerate(cases):
+        d = tmp_path / f"c{i}"
+        _small_table(d, edit=edit_with(changes))
+        with pytest.raises(ValueError, match="attrs.json") as e:
+            polbrdf.xarray.open_lut(d)
+        assert key in str(e.value), (what, str(e.value))
+    # Unsorted coordinates (two rows).
+    d = tmp_path / "unsorted"
+    _small_table(d, theta_r=(20.0, 10.0))
+    with pytest.raises(ValueError, match=r"attrs.json.*`coords.theta_r` must increase strictly"):
+        polbrdf.xarray.open_lut(d)
+    # JSON nested past the recursion limit.
+    d = tmp_path / "deep"
+    _small_table(d)
+    (d / "attrs.json").write_text("[" * 100_000 + "]" * 100_000)
+    with pytest.raises(ValueError, match=r"attrs.json: JSON nested too deeply"):
+        polbrdf.xarray.open_lut(d)
+    # A truncated table.
+    d = tmp_path / "truncated"
+    _small_table(d)
+    (d / "table.npy").write_bytes((d / "table.npy").read_bytes()[:20])
+    with pytest.raises(ValueError, match=r"table.npy: not a .npy table"):
+        polbrdf.xarray.open_lut(d)
+
+
 def test_benchmark_script_runs_small(tmp_path) -> None:
     pytest.importorskip("zarr", reason="zarr is not installed")
     script = os.path.join(os.path.dirname(__file__), "..", "examples", "lut_bench.py")

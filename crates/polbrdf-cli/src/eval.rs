@@ -2,9 +2,11 @@
 //! in chunks so memory stays bounded for any number of rows.
 
 use crate::error::CliError;
-use polbrdf::{DirectionBatch, Engine, Mueller};
+use polbrdf::{DirectionBatch, Engine, Geometry, GeometryBatch, Mueller};
 use polbrdf_io::csv_io::WAVELENGTH_COLUMN;
-use polbrdf_io::stream::{Geometries, GeometryChunk, GeometryReader, ResultWriter, CHUNK_ROWS};
+use polbrdf_io::stream::{
+    Geometries, GeometryChunk, GeometryReader, ResultWriter, RowResult, CHUNK_ROWS,
+};
 use polbrdf_io::Output;
 use std::path::Path;
 
@@ -59,18 +61,43 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
     Ok(writer.finish()?)
 }
 
-/// The pBRDF of a chunk's rows through the engine: from the angles, or from the direction
+/// The results of a chunk's rows through the engine: from the angles, or from the direction
 /// vectors by the direction entry point (`DirectionBatch`: no angle on the way, a vector at or
-/// below the horizon gives a zero pBRDF).
-fn pbrdf_of(engine: &Engine<'_>, geometries: &Geometries) -> Result<Vec<Mueller>, CliError> {
-    Ok(match geometries {
-        Geometries::Angles(g) => engine.pbrdf_of(g)?,
+/// below the horizon gives a zero pBRDF). The BRDF, DoLP and AoLP come from the core's one
+/// definition of them, `Engine::brdf_dolp_aolp_into` (as in `lut` and Python), not from the
+/// matrix.
+fn pbrdf_of(engine: &Engine<'_>, geometries: &Geometries) -> Result<Vec<RowResult>, CliError> {
+    let n = geometries.len();
+    let (mut b, mut d, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let pbrdf = match geometries {
+        Geometries::Angles(g) => {
+            let angles: [Vec<f64>; 4] = [
+                g.iter().map(Geometry::theta_i).collect(),
+                g.iter().map(Geometry::phi_i).collect(),
+                g.iter().map(Geometry::theta_r).collect(),
+                g.iter().map(Geometry::phi_r).collect(),
+            ];
+            let [ti, pi, tr, pr] = &angles;
+            let batch = GeometryBatch::new(ti, pi, tr, pr)?;
+            engine.brdf_dolp_aolp_into(&batch, &mut b, &mut d, &mut a)?;
+            engine.pbrdf_of(g)?
+        }
         Geometries::Directions { w_i, w_r } => {
-            let mut rows = vec![[0.0; 16]; w_i.len()];
-            engine.mueller_into(&DirectionBatch::new(w_i, w_r)?, &mut rows)?;
+            let batch = DirectionBatch::new(w_i, w_r)?;
+            let mut rows = vec![[0.0; 16]; n];
+            engine.mueller_into(&batch, &mut rows)?;
+            engine.brdf_dolp_aolp_into(&batch, &mut b, &mut d, &mut a)?;
             rows.iter().map(Mueller::from_row_major).collect()
         }
-    })
+    };
+    Ok(pbrdf
+        .into_iter()
+        .enumerate()
+        .map(|(k, pbrdf)| RowResult {
+            pbrdf,
+            brdf_dolp_aolp: [b[k], d[k], a[k]],
+        })
+        .collect())
 }
 
 /// A wavelength error of the engine, at the row it came from (`first`: of the chunk's first

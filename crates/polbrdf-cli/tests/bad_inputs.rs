@@ -422,8 +422,34 @@ fn arrow_cases() -> Vec<Case> {
         eval_arrow("arrow: a block beyond the file", "g.arrow", include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(), 3, &["g.arrow", "block 1", "lies outside the file"]),
         eval_arrow("arrow: direction component NaN", "g.arrow", arrow_bytes(&[("w_i_x", f(vec![Some(0.0)])), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(f64::NAN)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], false, 8), 3, &["g.arrow:1:", "`w_r_x`", "finite"]),
         eval_arrow("arrow: text direction column", "g.arrows", arrow_bytes(&[("w_i_x", Arc::new(StringArray::from(vec!["0"])) as ArrayRef), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(0.0)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], true, 8), 3, &["g.arrows:1:", "`w_i_x`", "must hold numbers"]),
+        // Issue 35: pandas' Feather files are compressed (LZ4 by default): refused with the
+        // command that re-saves them (it named a Cargo feature).
+        eval_arrow("arrow: pandas' LZ4 Feather", "g.feather", include_bytes!("data/pandas_lz4.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (LZ4)", "compression=\"uncompressed\""]),
+        eval_arrow("arrow: pandas' ZSTD Feather", "g.feather", include_bytes!("data/pandas_zstd.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (ZSTD)", "compression=\"uncompressed\""]),
+        eval_arrow("arrow: pandas' uncompressed Feather (valid)", "g.feather", include_bytes!("data/pandas_uncompressed.feather").to_vec(), 0, &[]),
         eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
     ]
+}
+
+/// A flat band response of `n` rows from 8 µm, 10⁻⁴ µm apart.
+fn long_band(n: usize) -> Vec<u8> {
+    let mut text = String::from("wavelength_um,response\n");
+    for k in 0..n {
+        text.push_str(&format!("{},1\n", 8.0 + k as f64 * 1e-4));
+    }
+    text.into_bytes()
+}
+
+/// A sky table of `n` rows whose zenith angles and azimuths are all distinct (row k at
+/// θ = 90·k/(n−1), φ = 360·k/n): a grid of n² nodes with n given.
+fn sparse_sky_table(n: usize) -> Vec<u8> {
+    let mut text = String::from("theta_deg,phi_deg,s0,s1,s2,s3\n");
+    for k in 0..n {
+        let theta = 90.0 * k as f64 / (n - 1) as f64;
+        let phi = 360.0 * k as f64 / n as f64;
+        text.push_str(&format!("{theta},{phi},1,0,0,0\n"));
+    }
+    text.into_bytes()
 }
 
 fn table() -> Vec<Case> {
@@ -561,6 +587,8 @@ fn table_common() -> Vec<Case> {
         radiance_scene("band without response", "[band]\nstep_um = 0.1\n", vec![], 3, &["s.toml:1", "`band`", "response"]),
         radiance_scene("band step too small", "[band]\nresponse = \"b.csv\"\nstep_um = 1e-12\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "1e-12", "10⁵ pieces", "8–12 µm"]),
         radiance_scene("band step 0", "[band]\nresponse = \"b.csv\"\nstep_um = 0\n", vec![("b.csv", t(LWIR))], 3, &["s.toml:3", "`band.step_um`", "> 0"]),
+        // Issue 35: each band row is a quadrature panel edge (10⁵ rows ran for minutes).
+        radiance_scene("band of 10⁴ + 1 rows", "[band]\nresponse = \"b.csv\"\n[surface]\ntemperature_k = 300\n", vec![("b.csv", long_band(10_001))], 3, &["s.toml:2", "`band.response`", "b.csv:10002", "`wavelength_um`", "at most 10⁴ rows"]),
         radiance_scene("scene band file missing", "[band]\nresponse = \"nob.csv\"\n", vec![], 3, &["s.toml:2", "`band.response`", "nob.csv", "cannot read"]),
         radiance_scene("contrast scene given to radiance", "wavelength_um = 10\n[surface]\ntemperature_k = 300\n[target]\ntemperature_k = 305\n", vec![], 3, &["s.toml", "[target]", "[surface]"]),
         radiance_scene("background table given to radiance", "wavelength_um = 10\n[background]\nmaterial = \"paint\"\n", vec![], 3, &["s.toml", "[background]"]),
@@ -587,6 +615,11 @@ fn table_common() -> Vec<Case> {
         radiance_scene("scene unknown key in [sun]", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\nelevation_deg = 60\n", vec![], 3, &["s.toml:5", "`sun.elevation_deg`", "unknown key in [sun]", "zenith_deg, azimuth_deg, irradiance, stokes"]),
         radiance_scene("sun on the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 90\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 90", "above the horizon", "[0, 90)"]),
         radiance_scene("sun below the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 95\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 95", "above the horizon"]),
+        // Issue 35 item 7: the documented bound panicked ("internal error", exit 1).
+        radiance_scene("sun azimuth at the bound 1e8 (valid)", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = 1e8\nirradiance = 1000\n[sky]\nmodel = \"cie-clear\"\nirradiance = 80\n", vec![], 0, &[]),
+        radiance_scene("sun azimuth -1e8, no sky (valid)", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = -1e8\nirradiance = 1000\n", vec![], 0, &[]),
+        radiance_scene("sun azimuth beyond the bound", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = 1.5e8\nirradiance = 1000\n", vec![], 3, &["s.toml:4", "`sun.azimuth_deg`", "150000000", "1e8"]),
+        radiance_scene("sun azimuth 1e300", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nazimuth_deg = -1e300\nirradiance = 1000\n", vec![], 3, &["s.toml:4", "`sun.azimuth_deg`", "1e8"]),
         radiance_scene("sun without zenith", "wavelength_um = 0.55\n[sun]\nirradiance = 1000\n", vec![], 3, &["s.toml:2", "`sun`", "missing required key `zenith_deg`"]),
         radiance_scene("negative sun irradiance", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = -1000\n", vec![], 3, &["s.toml:4", "`sun.irradiance`", "-1000", ">= 0"]),
         radiance_scene("sun Stokes vector of 3 numbers", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\nstokes = [1, 0, 0]\n", vec![], 3, &["s.toml:5", "`sun.stokes`", "expected 4 numbers", "got 3"]),
@@ -596,6 +629,10 @@ fn table_common() -> Vec<Case> {
         radiance_scene("cie-clear dop_max 1.5", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1\n[sky]\nmodel = \"cie-clear\"\nirradiance = 50\ndop_max = 1.5\n", vec![], 3, &["s.toml:8", "`sky.dop_max`", "1.5", "[0, 1]"]),
         radiance_scene("sky table file missing", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"nosky.csv\"\n", vec![], 3, &["s.toml:4", "`sky.file`", "nosky.csv", "cannot read"]),
         radiance_scene("sky table with a hole", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n0,180,1,0,0,0\n45,0,1,0,0,0\n90,0,1,0,0,0\n90,180,1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv: the sky table has a hole", "(theta_deg = 45, phi_deg = 180)", "[0, 45, 90] × azimuths [0, 180]"]),
+        // Issue 35 item 3: 10⁵ rows of distinct angles span 10¹⁰ nodes; the grid was allocated
+        // (160 GB, exit 134) before the hole was found.
+        radiance_scene("sky table of 10⁵ rows, each its own zenith and azimuth", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", sparse_sky_table(100_000))], 3, &["s.toml:4", "`sky.file`", "the sky table has a hole", "(theta_deg = 0, phi_deg = 0.0036)", "10000000000 nodes", "9999900000 of them are missing (100000 rows given)"]),
+        radiance_scene("sky profile of radiance 1e308", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("zenith_deg,radiance\n0,1\n90,1e308\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`radiance`", "1e150"]),
         radiance_scene("sky table with a node given twice", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,1,0,0,0\n90,0,2,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:4", "(theta_deg = 90, phi_deg = 0) is given twice", "lines 3 and 4"]),
         radiance_scene("sky table not reaching zenith 90", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n60,0,1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv", "from 0° to 90°"]),
         radiance_scene("sky table with s0 below 0", "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("theta_deg,phi_deg,s0,s1,s2,s3\n0,0,1,0,0,0\n90,0,-1,0,0,0\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`s0`", "-1", ">= 0"]),
@@ -746,6 +783,10 @@ fn table_common() -> Vec<Case> {
         case("pbsdf: repeated band wavelengths", vec![("t.pbsdf", pbsdf(|f| f[3].3 = [450u16, 450, 550, 600, 650].iter().flat_map(|x| x.to_le_bytes()).collect()))], &["fit", "--material", "paint", "--data", "{d}/t.pbsdf", "--free", "n", "--plot", "{d}/p.svg", "--output", "{d}/out.json"], 3, &["p_450nm.svg", "same file as the output"]),
         case("export: unknown material", vec![], &["export", "--material", "nope", "--out", "{d}/out.json"], 3, &["nope"]),
         case("export: directory missing", vec![], &["export", "--material", "paint", "--grid", "3,3,3", "--out", "{d}/no/out.pbsdf"], 4, &["out.pbsdf", "cannot write"]),
+        // Issue 35: files read whole are bounded (16 MiB), not read until memory runs out.
+        case("material /dev/zero", vec![("g.csv", t(GEO))], &["eval", "--material", "/dev/zero", "--input", "{d}/g.csv", "--output", "{d}/out.csv"], 3, &["/dev/zero", "longer than 16 MiB"]),
+        case("scene /dev/zero", vec![], &["radiance", "--material", "paint", "--scene", "/dev/zero", "--theta-deg", "0", "--output", "{d}/out.csv"], 3, &["/dev/zero", "longer than 16 MiB"]),
+        eval_material("index /dev/zero", "index = \"/dev/zero\"\nsigma_deg = 5\n", 3, &["m.toml:1", "`index`", "/dev/zero", "longer than 16 MiB"]),
         // Usage errors (clap).
         case("unknown subcommand", vec![], &["frobnicate"], 2, &["frobnicate"]),
         case("missing required option", vec![], &["eval", "--material", "paint"], 2, &["--input"]),
@@ -818,4 +859,117 @@ fn walk(dir: &Path) -> Vec<String> {
         }
     }
     out
+}
+
+/// A wide geometry table: the angle columns, then `width - 4` more, and `rows` rows.
+fn wide_csv(width: usize, rows: usize) -> String {
+    let mut names: Vec<String> = GEO
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .map(Into::into)
+        .collect();
+    names.extend((4..width).map(|i| format!("c{i}")));
+    let row = format!("30,0,30,180{}", ",1".repeat(width - 4));
+    let mut text = names.join(",");
+    for _ in 0..rows {
+        text.push('\n');
+        text.push_str(&row);
+    }
+    text + "\n"
+}
+
+/// Issue 35 item 2: `eval` of a wide CSV under a 1 GiB address-space limit. The reader reserved
+/// 65 536 rows × columns cells before reading a row: 1000 columns aborted (exit 134) under the
+/// limit, the README's 10⁵-column header (26 GB asked for 50 004 columns) everywhere. A chunk
+/// is now bounded by cells and bytes, and every row comes through.
+#[test]
+fn a_wide_csv_runs_in_bounded_memory() {
+    let dir = tempfile::tempdir().unwrap();
+    for (width, rows) in [(1000, 3), (100_004, 2)] {
+        let input = dir.path().join(format!("w{width}.csv"));
+        std::fs::write(&input, wide_csv(width, rows)).unwrap();
+        let output = dir.path().join(format!("o{width}.csv"));
+        let out = crate::common::polbrdf_limited(
+            1 << 20,
+            &[
+                "eval",
+                "--material",
+                "paint",
+                "--input",
+                input.to_str().unwrap(),
+                "--output",
+                output.to_str().unwrap(),
+            ],
+        );
+        assert_eq!(out.status.code(), Some(0), "{width}: {}", stderr(&out));
+        let text = std::fs::read_to_string(&output).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), rows + 1, "{width}");
+        for l in &lines {
+            assert_eq!(l.split(',').count(), width + 19, "{width}");
+        }
+    }
+}
+
+/// Issue 35: a scene or material may name any file; one that is not what it claims is an
+/// error naming the file, without its content (the messages quoted the first line of
+/// `/etc/passwd`).
+#[test]
+fn a_named_file_of_another_kind_is_not_echoed() {
+    const SECRET: &str = "root:x:0:0:secret-hash:/root:/bin/bash";
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap().to_string();
+    std::fs::write(
+        dir.path().join("passwd"),
+        format!("{SECRET}\ndaemon:x:1:1\n"),
+    )
+    .unwrap();
+    let scenes = [
+        "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"passwd\"\n",
+        "wavelength_um = 0.55\n[sky]\nmodel = \"table\"\nfile = \"passwd\"\n",
+        "[band]\nresponse = \"passwd\"\n[surface]\ntemperature_k = 300\n",
+    ];
+    for (k, scene) in scenes.iter().enumerate() {
+        let s = format!("{d}/s{k}.toml");
+        std::fs::write(&s, scene).unwrap();
+        let out = polbrdf(&[
+            "radiance",
+            "--material",
+            "paint",
+            "--scene",
+            &s,
+            "--theta-deg",
+            "0",
+            "--output",
+            &format!("{d}/out.csv"),
+        ]);
+        let msg = stderr(&out);
+        assert_eq!(out.status.code(), Some(3), "{scene}: {msg}");
+        assert!(
+            msg.contains("passwd") && msg.contains("not shown"),
+            "{scene}: {msg}"
+        );
+        assert!(
+            !msg.contains("root:x") && !msg.contains("secret"),
+            "{scene}: {msg}"
+        );
+    }
+    let m = format!("{d}/m.toml");
+    std::fs::write(&m, "index = \"passwd\"\nsigma_deg = 5\n").unwrap();
+    std::fs::write(dir.path().join("g.csv"), GEO_WL).unwrap();
+    let out = polbrdf(&[
+        "eval",
+        "--material",
+        &m,
+        "--input",
+        &format!("{d}/g.csv"),
+        "--output",
+        &format!("{d}/out.csv"),
+    ]);
+    let msg = stderr(&out);
+    assert_eq!(out.status.code(), Some(3), "{msg}");
+    assert!(msg.contains("passwd"), "{msg}");
+    assert!(!msg.contains("root:x") && !msg.contains("secret"), "{msg}");
 }

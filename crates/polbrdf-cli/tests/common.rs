@@ -34,3 +34,15 @@ pub fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
         .collect();
     (header, rows)
 }
+
+/// Runs the binary with its address space limited to `kib` KiB (`ulimit -v` in `sh`), so that
+/// an allocation sized by a claim instead of by the data aborts the run.
+pub fn polbrdf_limited(kib: u64, args: &[&str]) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_polbrdf"))
+        .args(args)
+        .output()
+        .expect("sh runs")
+}

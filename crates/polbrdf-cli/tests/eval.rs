@@ -314,3 +314,62 @@ fn direction_tables_agree_across_formats_and_with_angles() {
         }
     }
 }
+
+/// Issue 35: `eval`'s brdf, dolp and aolp_deg are the core's one definition of them,
+/// `Engine::brdf_dolp_aolp_into` (what `lut` and the Python module write), bit for bit: the
+/// DoLP of the matrix's first column differed from it in the last bit in about a third of the
+/// rows.
+#[test]
+fn eval_brdf_dolp_aolp_are_the_engines_bit_for_bit() {
+    use polbrdf::{Engine, GeometryBatch};
+    let dir = tempfile::tempdir().unwrap();
+    let rows: Vec<[f64; 4]> = (0..300)
+        .map(|k| {
+            let k = f64::from(k);
+            [
+                (k * 7.3) % 89.0,
+                (k * 13.1) % 360.0,
+                (k * 3.7) % 89.0,
+                (k * 29.9) % 360.0,
+            ]
+        })
+        .collect();
+    let mut csv = String::from("theta_i_deg,phi_i_deg,theta_r_deg,phi_r_deg\n");
+    for r in &rows {
+        csv += &format!("{},{},{},{}\n", r[0], r[1], r[2], r[3]);
+    }
+    let input = write(dir.path(), "g.csv", &csv);
+    let output = dir.path().join("o.csv");
+    let out = polbrdf(&[
+        "eval",
+        "--material",
+        "paint",
+        "--input",
+        &input,
+        "--output",
+        output.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let (header, got) = parse_csv(&std::fs::read_to_string(&output).unwrap());
+    assert_eq!(header[4..7], ["brdf", "dolp", "aolp_deg"]);
+    let rad = |j: usize| rows.iter().map(|r| r[j].to_radians()).collect::<Vec<f64>>();
+    let (ti, pi, tr, pr) = (rad(0), rad(1), rad(2), rad(3));
+    let batch = GeometryBatch::new(&ti, &pi, &tr, &pr).unwrap();
+    let m = polbrdf::preset("paint").unwrap().build().unwrap();
+    let n = rows.len();
+    let (mut b, mut d, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    Engine::new(&m)
+        .brdf_dolp_aolp_into(&batch, &mut b, &mut d, &mut a)
+        .unwrap();
+    // The CSV writes −0 as 0 (`+ 0.0`).
+    for (k, row) in got.iter().enumerate() {
+        let v = |j: usize| row[j].parse::<f64>().unwrap().to_bits();
+        assert_eq!(v(4), (b[k] + 0.0).to_bits(), "row {k}: brdf");
+        assert_eq!(v(5), (d[k] + 0.0).to_bits(), "row {k}: dolp");
+        assert_eq!(
+            v(6),
+            (a[k].to_degrees() + 0.0).to_bits(),
+            "row {k}: aolp_deg"
+        );
+    }
+}

@@ -7,7 +7,7 @@
 //! and column. Output columns are Float64, except text passed through, which stays text.
 
 use crate::error::{Error, Result};
-pub use crate::stream::{Column, Kind};
+pub use crate::table::{Column, Kind};
 use arrow_array::cast::AsArray;
 use arrow_array::types::{
     Float32Type, Float64Type, Int16Type, Int32Type, Int64Type, Int8Type, UInt16Type, UInt32Type,
@@ -41,6 +41,24 @@ pub fn arrow_err(path: &Path, what: &str, e: ArrowError) -> Error {
             path: path.to_path_buf(),
             source,
         },
+        // Compressed batches (pandas' `to_feather` compresses with LZ4 by default) are not
+        // decoded: arrow-ipc's decoders reserve the uncompressed size a buffer claims before
+        // reading it (an abort for a lying claim), and its ZSTD links a C library.
+        ArrowError::InvalidArgumentError(m)
+            if m.starts_with("lz4 IPC decompression")
+                || m.starts_with("zstd IPC decompression") =>
+        {
+            Error::File {
+                path: path.to_path_buf(),
+                message: format!(
+                    "Arrow IPC {what}: compressed ({}), which polbrdf does not read; save the \
+                     table uncompressed — pandas: `df.to_feather(path, \
+                     compression=\"uncompressed\")`; pyarrow: \
+                     `pyarrow.feather.write_feather(table, path, compression=\"uncompressed\")`",
+                    if m.starts_with("lz4") { "LZ4" } else { "ZSTD" }
+                ),
+            }
+        }
         other => Error::File {
             path: path.to_path_buf(),
             message: format!("Arrow IPC {what}: {other}"),

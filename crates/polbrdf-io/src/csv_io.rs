@@ -1,7 +1,8 @@
 //! Geometry CSV in, result CSV out (the `polbrdf eval` contract in the README).
 
 use crate::error::{Error, Result};
-use polbrdf::{Geometry, Mueller, Stokes};
+use polbrdf::{Geometry, Stokes};
+use std::collections::hash_map::{Entry, HashMap};
 use std::io::{BufRead, Read};
 use std::path::{Path, PathBuf};
 
@@ -43,20 +44,44 @@ pub struct GeometryTable {
 /// The optional wavelength column of geometry and measurement files (µm).
 pub const WAVELENGTH_COLUMN: &str = "wavelength_um";
 
+/// The most bytes of a file read whole ([`read_all`]: material, scene, `lut` configuration,
+/// refractive-index and whole `.npy` files): 16 MiB, far above any such file (the library's
+/// largest index file is under 100 kB), so that a device or a huge file named by mistake
+/// (`--material /dev/zero`) is an error naming it instead of a read until memory runs out.
+pub const MAX_WHOLE_FILE_BYTES: u64 = 16 << 20;
+
 /// The bytes of `path`, or of standard input for `-`, read whole (for the small files only:
-/// material, scene and refractive-index files; every CSV reader streams, [`CsvReader`]).
+/// material, scene and refractive-index files; every CSV reader streams, [`CsvReader`]), at
+/// most [`MAX_WHOLE_FILE_BYTES`].
+///
+/// # Errors
+/// [`Error::Read`]; [`Error::File`] for a file longer than the bound.
 pub(crate) fn read_all(path: &Path) -> Result<Vec<u8>> {
     let read_err = |source| Error::Read {
         path: path.to_path_buf(),
         source,
     };
-    if path.as_os_str() == "-" {
-        let mut buf = Vec::new();
-        std::io::stdin().read_to_end(&mut buf).map_err(read_err)?;
-        Ok(buf)
+    let src: Box<dyn Read> = if path.as_os_str() == "-" {
+        Box::new(std::io::stdin())
     } else {
-        std::fs::read(path).map_err(read_err)
+        Box::new(std::fs::File::open(path).map_err(read_err)?)
+    };
+    let mut buf = Vec::new();
+    // One byte past the bound tells a file at the bound from a longer one.
+    src.take(MAX_WHOLE_FILE_BYTES + 1)
+        .read_to_end(&mut buf)
+        .map_err(read_err)?;
+    if buf.len() as u64 > MAX_WHOLE_FILE_BYTES {
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "longer than {} MiB: this file is read whole, and no file of its kind is that \
+                 long (is it the file meant?)",
+                MAX_WHOLE_FILE_BYTES >> 20
+            ),
+        });
     }
+    Ok(buf)
 }
 
 /// The 1-based line of byte `pos` of `text` (for TOML spans).
@@ -531,6 +556,18 @@ pub(crate) fn check_header(
         .copied()
         .filter(|r| position(r).is_none())
         .collect();
+    if missing.len() == required.len() {
+        // Not a table of this kind (a scene may name any file, `/etc/passwd`): its first line
+        // is not shown.
+        return Err(Error::File {
+            path: path.to_path_buf(),
+            message: format!(
+                "missing column(s) {}: the first line names none of them, so this is not a \
+                 table of that kind (its content is not shown)",
+                missing.join(", "),
+            ),
+        });
+    }
     if !missing.is_empty() {
         return Err(Error::File {
             path: path.to_path_buf(),
@@ -708,7 +745,9 @@ pub const BAND_COLUMNS: [&str; 2] = ["wavelength_um", "response"];
 ///
 /// # Errors
 /// [`Error::Field`] naming the file, the line and the column for a malformed or invalid value;
-/// [`Error::File`] for a missing column, fewer than two rows, or a response zero everywhere.
+/// [`Error::File`] for a missing column, fewer than two rows, or a response zero everywhere;
+/// [`Error::Field`] at the row after the [`polbrdf::analysis::spectral::MAX_BAND_ROWS`]th
+/// (the file is read no further).
 pub fn read_band_csv(path: &Path) -> Result<polbrdf::Band> {
     band_from(CsvReader::open(path)?)
 }
@@ -726,7 +765,11 @@ fn band_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<polbrdf::Band> {
     let path = reader.path.clone();
     let path = path.as_path();
     let (mut wl, mut response, mut lines) = (Vec::new(), Vec::new(), Vec::new());
-    for_each_record(&mut reader, |r| {
+    // Read up to one row past the core's bound (which names that row): no further.
+    while wl.len() <= polbrdf::analysis::spectral::MAX_BAND_ROWS {
+        let Some(r) = reader.next_record()? else {
+            break;
+        };
         wl.push(parse_number(
             path,
             r.line,
@@ -740,8 +783,7 @@ fn band_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<polbrdf::Band> {
             r.get(index[1]),
         )?);
         lines.push(r.line);
-        Ok(())
-    })?;
+    }
     let name = path.file_name().map_or_else(
         || path.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -907,58 +949,39 @@ fn sky_table_from<R: BufRead>(
     let (theta, phi) = (distinct(0), distinct(1));
     let (nt, np) = (theta.len(), phi.len());
     let position = |a: &[f64], x: f64| a.binary_search_by(|v| v.total_cmp(&x)).expect("in it");
-    // The row of each node, θ-major.
-    let mut node_row: Vec<Option<usize>> = vec![None; nt * np];
+    // The row of each node given, by (zenith index, azimuth index): memory by the rows, not by
+    // the grid they span (10⁵ rows of distinct angles span 10¹⁰ nodes: issue 35).
+    let mut node_row: HashMap<(usize, usize), usize> = HashMap::with_capacity(values.len());
     for (r, v) in values.iter().enumerate() {
-        let node = position(&theta, v[0]) * np + position(&phi, v[1]);
-        if let Some(first) = node_row[node] {
-            return Err(field(
-                lines[r],
-                "theta_deg,phi_deg",
-                format!(
-                    "the node (theta_deg = {}, phi_deg = {}) is given twice: at lines {} and {}",
-                    show(v[0]),
-                    show(v[1]),
-                    lines[first],
-                    lines[r]
-                ),
-            ));
+        match node_row.entry((position(&theta, v[0]), position(&phi, v[1]))) {
+            Entry::Occupied(first) => {
+                return Err(field(
+                    lines[r],
+                    "theta_deg,phi_deg",
+                    format!(
+                        "the node (theta_deg = {}, phi_deg = {}) is given twice: at lines {} \
+                         and {}",
+                        show(v[0]),
+                        show(v[1]),
+                        lines[*first.get()],
+                        lines[r]
+                    ),
+                ))
+            }
+            Entry::Vacant(e) => {
+                e.insert(r);
+            }
         }
-        node_row[node] = Some(r);
     }
-    if let Some(hole) = node_row.iter().position(Option::is_none) {
-        let missing = node_row.iter().filter(|r| r.is_none()).count();
-        let list = |a: &[f64]| {
-            let shown: Vec<String> = if a.len() <= 12 {
-                a.iter().map(|x| show(*x)).collect()
-            } else {
-                a[..5]
-                    .iter()
-                    .map(|x| show(*x))
-                    .chain(["…".to_string()])
-                    .chain(a[a.len() - 5..].iter().map(|x| show(*x)))
-                    .collect()
-            };
-            shown.join(", ")
-        };
-        return Err(Error::File {
-            path: path.to_path_buf(),
-            message: format!(
-                "the sky table has a hole: no row for the node (theta_deg = {}, phi_deg = {}); \
-                 the grid of its zenith angles [{}] × azimuths [{}] has {} nodes, each needed \
-                 once, and {} of them {} missing ({} rows given)",
-                show(theta[hole / np]),
-                show(phi[hole % np]),
-                list(&theta),
-                list(&phi),
-                nt * np,
-                missing,
-                if missing == 1 { "is" } else { "are" },
-                values.len()
-            ),
-        });
+    // Every node given once: there are as many nodes as rows.
+    let grid = nt as u128 * np as u128;
+    if (node_row.len() as u128) < grid {
+        return Err(sky_table_hole(path, &theta, &phi, &node_row, values.len()));
     }
-    let order: Vec<usize> = node_row.into_iter().map(|r| r.expect("no hole")).collect();
+    let mut order = vec![0; nt * np];
+    for ((t, p), r) in node_row {
+        order[t * np + p] = r;
+    }
     let stokes = order
         .iter()
         .map(|&r| {
@@ -991,6 +1014,61 @@ fn sky_table_from<R: BufRead>(
             message: other.to_string(),
         },
     })
+}
+
+/// The error of a sky table whose rows leave a node of their grid (zenith angles `theta` ×
+/// azimuths `phi`) without a row: it names the first missing node (θ-major), the grid and how
+/// many nodes are missing. Time and memory by the rows given (`node_row`), never by the grid.
+fn sky_table_hole(
+    path: &Path,
+    theta: &[f64],
+    phi: &[f64],
+    node_row: &HashMap<(usize, usize), usize>,
+    rows: usize,
+) -> Error {
+    let np = phi.len() as u128;
+    let mut given: Vec<u128> = node_row
+        .keys()
+        .map(|&(t, p)| t as u128 * np + p as u128)
+        .collect();
+    given.sort_unstable();
+    // The first index not given: the first k with given[k] ≠ k (the indices are distinct).
+    let hole = given
+        .iter()
+        .enumerate()
+        .find(|&(k, &g)| g != k as u128)
+        .map_or(given.len() as u128, |(k, _)| k as u128);
+    let nodes = theta.len() as u128 * np;
+    let missing = nodes - given.len() as u128;
+    let list = |a: &[f64]| {
+        let shown: Vec<String> = if a.len() <= 12 {
+            a.iter().map(|x| show(*x)).collect()
+        } else {
+            a[..5]
+                .iter()
+                .map(|x| show(*x))
+                .chain(["…".to_string()])
+                .chain(a[a.len() - 5..].iter().map(|x| show(*x)))
+                .collect()
+        };
+        shown.join(", ")
+    };
+    Error::File {
+        path: path.to_path_buf(),
+        message: format!(
+            "the sky table has a hole: no row for the node (theta_deg = {}, phi_deg = {}); the \
+             grid of its zenith angles [{}] × azimuths [{}] has {} nodes, each needed once, and \
+             {} of them {} missing ({} rows given)",
+            show(theta[(hole / np) as usize]),
+            show(phi[(hole % np) as usize]),
+            list(theta),
+            list(phi),
+            nodes,
+            missing,
+            if missing == 1 { "is" } else { "are" },
+            rows
+        ),
+    }
 }
 
 /// The columns of a view-direction file: the view zenith and azimuth angles in degrees.
@@ -1140,11 +1218,11 @@ impl CsvTable {
 }
 
 /// The result CSV of `polbrdf eval`: the input columns unchanged, then `brdf, dolp, aolp_deg,
-/// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's pBRDF in `pbrdf`.
+/// m00 … m33` (F row-major, psps basis, sr⁻¹) for each row's result in `pbrdf`.
 ///
 /// # Errors
 /// [`Error::File`] when an input column has the name of an output column.
-pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> {
+pub fn results_csv(table: &GeometryTable, pbrdf: &[crate::table::RowResult]) -> Result<Vec<u8>> {
     let extra = result_columns();
     if let Some(clash) = table.headers.iter().find(|h| extra.contains(h)) {
         return Err(Error::File {
@@ -1155,7 +1233,7 @@ pub fn results_csv(table: &GeometryTable, pbrdf: &[Mueller]) -> Result<Vec<u8>> 
     let mut t = CsvTable::new(table.headers.iter().chain(extra.iter()));
     for (row, f) in table.rows.iter().zip(pbrdf) {
         let mut fields: Vec<String> = row.clone();
-        fields.extend(crate::stream::result_values(f).iter().map(|v| fmt_f64(*v)));
+        fields.extend(crate::table::result_values(f).iter().map(|v| fmt_f64(*v)));
         t.fields(fields);
     }
     Ok(t.into_bytes())

@@ -18,6 +18,7 @@ pub mod pbsdf;
 pub mod refractive;
 pub mod scene;
 pub mod stream;
+pub mod table;
 pub mod tensorfile;
 pub mod write;
 

@@ -80,10 +80,7 @@ const CHECK_POINTS: usize = 1024;
 /// [`Error::Read`] if the file cannot be read; otherwise as
 /// [`parse_refractiveindex_yaml_bytes`].
 pub fn read_refractiveindex_yaml(path: &Path) -> Result<SpectralIndex> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = crate::csv_io::read_all(path)?;
     parse_refractiveindex_yaml_bytes(&bytes, path, &name_of(path))
 }
 

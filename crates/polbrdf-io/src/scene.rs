@@ -809,8 +809,8 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
 }
 
 /// `[sun]`: `zenith_deg` and `irradiance` required, `azimuth_deg` 0 and `stokes` unpolarized by
-/// default; the angles in radians, the Stokes vector normalized to `s0 = 1`. `None` without a
-/// `[sun]`. The values are checked here, in the units of the file (the core checks them again,
+/// default; the angles in radians (the azimuth first taken modulo 360°, exactly), the Stokes
+/// vector normalized to `s0 = 1`. `None` without a `[sun]`. The values are checked here, in the units of the file (the core checks them again,
 /// in radians).
 fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
     if !doc.has("sun") {
@@ -830,9 +830,16 @@ fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
             "the sun must be above the horizon: in [0, 90) degrees",
         ));
     }
-    if !azimuth_deg.is_finite() {
-        return Err(doc.invalid("sun.azimuth_deg", azimuth_deg, "must be finite"));
+    if !(azimuth_deg.is_finite() && azimuth_deg.abs() <= polbrdf::MAX_AZIMUTH_DEG) {
+        return Err(doc.invalid(
+            "sun.azimuth_deg",
+            azimuth_deg,
+            "must be finite and at most 1e8 degrees in magnitude (as every azimuth)",
+        ));
     }
+    // Taken modulo 360° (exact in floating point: a file's 1e8 is the sun at 280°, bit for
+    // bit); an azimuth within a turn is kept as written.
+    let azimuth_deg = azimuth_deg % 360.0;
     if !(irradiance.is_finite() && irradiance >= 0.0) {
         return Err(doc.invalid("sun.irradiance", irradiance, "must be finite and >= 0"));
     }

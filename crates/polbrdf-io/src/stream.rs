@@ -18,13 +18,29 @@ use crate::csv_io::{
 };
 use crate::error::{Error, Result};
 use crate::npy::{NpyReader, NpyWriter};
+pub use crate::table::{result_values, Column, Kind, RowResult};
 use crate::write::Output;
-use polbrdf::{Geometry, Mueller};
+use polbrdf::Geometry;
 use std::io::{BufReader, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 
-/// Rows per chunk.
+/// Rows per chunk, at most (a narrow table's chunk).
 pub const CHUNK_ROWS: usize = 1 << 16;
+
+/// Cells (rows × columns) per chunk, at most: a chunk of a wide table holds fewer rows, so
+/// that its memory is bounded by bytes, not by rows (16 MiB of numbers, or of CSV field ends;
+/// a table of 10⁵ columns is read 20 rows at a time). A chunk holds at least one row.
+pub const CHUNK_CELLS: usize = 1 << 21;
+
+/// Bytes of CSV field text per chunk, at most (the chunk ends after the row that reaches it;
+/// a row is at most [`crate::csv_io::MAX_LINE_BYTES`]).
+pub const CHUNK_TEXT_BYTES: usize = 1 << 24;
+
+/// The most rows of a chunk of a table `width` columns wide when `max` are asked for: at most
+/// [`CHUNK_CELLS`] cells, but at least one row (for `max ≥ 1`).
+pub fn chunk_rows(max: usize, width: usize) -> usize {
+    max.min((CHUNK_CELLS / width.max(1)).max(1))
+}
 
 /// A table format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -71,34 +87,6 @@ fn no_arrow(path: &Path) -> Error {
     }
 }
 
-/// One input column of a chunk, column-major (Arrow input).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Column {
-    /// Numbers (any numeric Arrow type, as f64).
-    Numbers(Vec<f64>),
-    /// Text, passed through as written.
-    Text(Vec<String>),
-}
-
-impl Column {
-    /// The kind of the column.
-    pub fn kind(&self) -> Kind {
-        match self {
-            Column::Numbers(_) => Kind::Number,
-            Column::Text(_) => Kind::Text,
-        }
-    }
-}
-
-/// The kind of a column: numbers or text.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Kind {
-    /// Numbers (Float64 in an Arrow output).
-    Number,
-    /// Text (Utf8 in an Arrow output).
-    Text,
-}
-
 /// The CSV fields of a chunk's rows in one text buffer (no allocation per row).
 #[derive(Debug, Clone, Default)]
 pub struct TextRows {
@@ -109,12 +97,19 @@ pub struct TextRows {
 }
 
 impl TextRows {
+    /// Room for `rows` rows of `width` fields ([`chunk_rows`] bounds the product).
     fn with_capacity(rows: usize, width: usize) -> Self {
+        let cells = rows.saturating_mul(width).min(CHUNK_CELLS);
         Self {
-            text: String::with_capacity(rows * width * 8),
-            ends: Vec::with_capacity(rows * width),
+            text: String::with_capacity(cells * 4),
+            ends: Vec::with_capacity(cells),
             width,
         }
+    }
+
+    /// The bytes of field text held.
+    fn text_len(&self) -> usize {
+        self.text.len()
     }
 
     /// Appends a record (with `width` fields: the reader checks every record's length).
@@ -403,7 +398,9 @@ impl GeometryReader {
         self.wavelength.is_some()
     }
 
-    /// The next chunk of at most `max` rows, or `None` at the end.
+    /// The next chunk of at most `max` rows, or `None` at the end. A chunk of a wide table
+    /// holds fewer rows: at most [`CHUNK_CELLS`] cells ([`chunk_rows`]) and, for CSV, about
+    /// [`CHUNK_TEXT_BYTES`] of text; memory is bounded by the bytes read, never by a row count.
     ///
     /// # Errors
     /// [`Error::Syntax`] (bad CSV or UTF-8, with the line), [`Error::Field`] (a non-number or
@@ -415,12 +412,13 @@ impl GeometryReader {
         }
         let path = self.path.clone();
         let columns = self.columns;
+        let max = chunk_rows(max, self.headers.len());
         let chunk = match &mut self.src {
             Src::Csv(rdr) => {
                 let cap = max.min(CHUNK_ROWS);
                 let mut records = TextRows::with_capacity(cap, self.headers.len());
                 let mut lines = Vec::with_capacity(cap);
-                while lines.len() < max {
+                while lines.len() < max && records.text_len() < CHUNK_TEXT_BYTES {
                     let Some(r) = rdr.next_record()? else {
                         break;
                     };
@@ -612,19 +610,6 @@ fn checked_wavelength(path: &Path, line: usize, v: f64) -> Result<f64> {
     crate::csv_io::check_wavelength(path, line, v)
 }
 
-/// The 19 numbers `eval` appends for one pBRDF: brdf, dolp, aolp_deg, then F row-major.
-pub fn result_values(f: &Mueller) -> [f64; 19] {
-    // The reflected Stokes vector for unpolarized input, F·(1, 0, 0, 0): its DoLP and AoLP as
-    // the core defines them.
-    let s = f.first_column();
-    let mut v = [0.0; 19];
-    v[0] = f.m00();
-    v[1] = s.dolp();
-    v[2] = s.aolp().to_degrees();
-    v[3..].copy_from_slice(&f.to_row_major());
-    v
-}
-
 enum Sink {
     Csv {
         out: Output,
@@ -796,12 +781,12 @@ impl ResultWriter {
         }
     }
 
-    /// Writes one chunk's rows with their pBRDFs.
+    /// Writes one chunk's rows with their results ([`RowResult`], one per row).
     ///
     /// # Errors
     /// [`Error::Write`]; [`Error::Field`] naming the input's line and column when a `.npy`
     /// output is given a CSV column that is not a number.
-    pub fn write_chunk(&mut self, chunk: &GeometryChunk, pbrdf: &[Mueller]) -> Result<()> {
+    pub fn write_chunk(&mut self, chunk: &GeometryChunk, pbrdf: &[RowResult]) -> Result<()> {
         let shown = self.shown();
         let werr = |source| Error::Write {
             path: shown.clone(),
@@ -967,7 +952,7 @@ fn chunk_kinds(
 #[cfg(feature = "arrow")]
 fn arrow_columns(
     chunk: &GeometryChunk,
-    pbrdf: &[Mueller],
+    pbrdf: &[RowResult],
     kinds: &[Kind],
     headers: &[String],
     input: &Path,
@@ -993,8 +978,9 @@ fn arrow_columns(
                             name,
                             recs.field(k, i),
                             &format!(
-                                "the column held numbers in the first {CHUNK_ROWS} rows, so \
-                                 the Arrow output's column is Float64"
+                                "the column held numbers in the first chunk of rows read (up to \
+                                 {CHUNK_ROWS}; fewer in a wide table), so the Arrow output's \
+                                 column is Float64"
                             ),
                         )
                     })
@@ -1033,7 +1019,7 @@ fn output_number(input: &Path, line: usize, name: &str, text: &str, why: &str) -
 }
 
 /// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
-fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &Mueller) {
+fn csv_row(line: &mut Vec<u8>, columns: &Passthrough, k: usize, cols: usize, f: &RowResult) {
     match columns {
         Passthrough::Text(recs) => {
             for field in recs.row(k) {
@@ -1092,7 +1078,7 @@ fn push_csv_field(line: &mut Vec<u8>, field: &str) {
 fn fill_npy_rows(
     row: &mut Vec<f64>,
     chunk: &GeometryChunk,
-    pbrdf: &[Mueller],
+    pbrdf: &[RowResult],
     headers: &[String],
     input: &Path,
 ) -> Result<()> {

@@ -102,17 +102,19 @@ const ANGLES: [&str; 4] = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg
 
 #[test]
 fn messages_about_names_are_bounded() {
-    // A header of one 500 kB name and 10⁴ others, without the angle columns: the message lists
-    // the header, shortened.
+    // A header of one 500 kB name, 10⁴ others and one angle column (a table of the kind, with
+    // three angle columns missing): the message lists the header, shortened. (A header with no
+    // angle column at all is not listed: issue 35.)
     let long = "k".repeat(500_000);
     let mut header = vec![long.clone()];
     header.extend((0..10_000).map(|k| format!("column{k}")));
+    header.push("theta_i_deg".into());
     let text = header.join(",") + "\n";
     let e = parse_geometry_csv(text.as_bytes(), Path::new("h.csv")).unwrap_err();
     let m = e.to_string();
     assert!(m.len() < 2048, "{} bytes", m.len());
     assert!(
-        m.contains("missing column(s) theta_i_deg") && m.contains("more"),
+        m.contains("missing column(s) phi_i_deg") && m.contains("more"),
         "{m}"
     );
     // The same name twice.
@@ -208,4 +210,66 @@ fn toml_files_dotted_keys_cr_only_lines_and_long_keys() {
         .unwrap_err()
         .to_string();
     assert!(m.len() < 2048, "{} bytes", m.len());
+}
+
+/// Issue 35 item 2: a chunk of a wide table holds at most `CHUNK_CELLS` cells (its memory is
+/// bounded by bytes, not by a row count), every row still comes through once and in order, and
+/// the chunks of the `.npy` form of the same table are cut alike.
+#[test]
+fn a_wide_table_is_read_in_chunks_bounded_by_cells() {
+    use polbrdf_io::npy::NpyWriter;
+    use polbrdf_io::stream::{chunk_rows, Format, GeometryReader, CHUNK_CELLS, CHUNK_ROWS};
+    let width = 2000;
+    let rows = 1100;
+    let mut names: Vec<String> = HEAD.split(',').map(str::to_string).collect();
+    names.extend((4..width).map(|i| format!("c{i}")));
+    let mut csv = names.join(",") + "\n";
+    let mut values = Vec::with_capacity(width * rows);
+    for r in 0..rows {
+        let row: Vec<f64> = (0..width)
+            .map(|i| match i {
+                0 | 2 => 30.0,
+                1 => (r % 360) as f64,
+                3 => 180.0,
+                _ => 1.0,
+            })
+            .collect();
+        csv += &row
+            .iter()
+            .map(|v| v.to_string())
+            .collect::<Vec<_>>()
+            .join(",");
+        csv.push('\n');
+        values.extend(row);
+    }
+    let mut npy = Vec::new();
+    let mut w = NpyWriter::new(&mut npy, &names, rows as u64).unwrap();
+    w.write_rows(&values).unwrap();
+    w.finish().unwrap();
+    let want = chunk_rows(CHUNK_ROWS, width);
+    assert_eq!(want, CHUNK_CELLS / width);
+    assert!(want < rows && want * width <= CHUNK_CELLS);
+    for (format, bytes) in [(Format::Csv, csv.into_bytes()), (Format::Npy, npy)] {
+        let mut r = GeometryReader::from_reader(
+            Box::new(std::io::Cursor::new(bytes)),
+            Path::new("wide"),
+            format,
+        )
+        .unwrap();
+        let mut sizes = Vec::new();
+        let mut phi = Vec::new();
+        while let Some(c) = r.next_chunk(CHUNK_ROWS).unwrap() {
+            sizes.push(c.len());
+            let polbrdf_io::stream::Geometries::Angles(g) = &c.geometries else {
+                panic!("angles")
+            };
+            phi.extend(g.iter().map(|g| g.phi_i().to_degrees().round() as usize));
+        }
+        assert_eq!(sizes, [want, rows - want], "{format:?}");
+        assert_eq!(
+            phi,
+            (0..rows).map(|r| r % 360).collect::<Vec<_>>(),
+            "{format:?}"
+        );
+    }
 }

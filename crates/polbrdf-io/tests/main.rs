@@ -5,6 +5,7 @@ mod arrow_files;
 mod csv_files;
 mod csv_limits;
 mod file_sets;
+mod layers;
 mod material_files;
 mod npy_files;
 mod refractive;

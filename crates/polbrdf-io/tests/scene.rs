@@ -791,7 +791,7 @@ fn cases() -> Vec<Case> {
             b"wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n",
             Some(4),
             Some("sky.file"),
-            &["{d}/sky.csv:3: field `radiance`", "= -2", "must be finite and >= 0"],
+            &["{d}/sky.csv:3: field `radiance`", "= -2", "must be finite, >= 0 and at most 1e150"],
         ),
         with_files(
             &[("sky.csv", b"zenith_deg,radiance\n0,1\n95,1\n")],

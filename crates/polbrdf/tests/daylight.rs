@@ -371,3 +371,46 @@ fn fuzzer_regression_huge_sky_values_are_refused_not_overflowed() {
         assert!(t.stokes(a, b).0[0].is_finite());
     }
 }
+
+/// Issue 35 item 7: a sun at the documented azimuth bound (1e8°) panicked ("validated sun and
+/// clamped view"): the views folded about its vertical plane went past the bound. Now it
+/// observes what a sun at 1e8 mod 360 = 280° does (the same direction, to the rounding of 1e8°
+/// in radians), and a sun beyond the bound is an error naming `sun.azimuth_deg`.
+#[test]
+fn a_sun_at_the_azimuth_bound_is_observed_and_beyond_it_refused() {
+    let w = Spectrum::Wavelength(0.55);
+    let views = [(0.3, 0.0), (0.7, 4.9), (1.1, 2.0), (1.4, -1.0)];
+    let scene = |az_deg: f64, sky: SkyModel| {
+        day(
+            Some(Sun::unpolarized(
+                40f64.to_radians(),
+                az_deg.to_radians(),
+                1000.0,
+            )),
+            sky,
+        )
+    };
+    let clear = SkyModel::ClearSky {
+        irradiance: 150.0,
+        dop_max: 0.75,
+    };
+    for sky in [SkyModel::None, clear] {
+        let near = observed_radiance(&paint(), &scene(280.0, sky.clone()), &w, &views).unwrap();
+        for az in [1e8, -1e8 + 200.0, 360.0 * 1e5 + 280.0] {
+            let far = observed_radiance(&paint(), &scene(az, sky.clone()), &w, &views).unwrap();
+            for (a, b) in near.iter().zip(&far) {
+                for j in 0..4 {
+                    let d = (a.stokes.0[j] - b.stokes.0[j]).abs();
+                    assert!(d <= 1e-6 * a.stokes.0[0], "{az}: S{j} {a:?} {b:?}");
+                }
+            }
+        }
+    }
+    for az in [1.0000001e8, -1e9, 1e300] {
+        let e = observed_radiance(&paint(), &scene(az, SkyModel::None), &w, &views).unwrap_err();
+        match e {
+            polbrdf::Error::InvalidParameter { name, .. } => assert_eq!(name, "sun.azimuth_deg"),
+            other => panic!("{az}: {other:?}"),
+        }
+    }
+}

@@ -210,6 +210,22 @@ fn band_validation_names_the_element() {
     }
 }
 
+/// Issue 35: a band's rows are bounded by the work they imply (`MAX_BAND_ROWS`, each a panel
+/// edge of the quadrature): 10⁴ rows make a band, one more is an error at that row.
+#[test]
+fn a_band_has_at_most_max_band_rows_rows() {
+    use polbrdf::analysis::spectral::MAX_BAND_ROWS;
+    let wl = |n: usize| (0..n).map(|k| 8.0 + k as f64 * 1e-4).collect::<Vec<f64>>();
+    let band = Band::new("b", wl(MAX_BAND_ROWS), vec![1.0; MAX_BAND_ROWS]).unwrap();
+    assert_eq!(band.table().0.len(), MAX_BAND_ROWS);
+    match Band::new("b", wl(MAX_BAND_ROWS + 1), vec![1.0; MAX_BAND_ROWS + 1]).unwrap_err() {
+        Error::InvalidParameterAt { name, index, .. } => {
+            assert_eq!((name, index), ("wavelength_um", MAX_BAND_ROWS));
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 fn light() -> Illumination {
     Illumination::from_degrees(50.0, 0.0, Stokes::unpolarized()).unwrap()
 }

@@ -150,7 +150,8 @@ impl ThermalScene {
     ///
     /// # Errors
     /// [`Error::InvalidParameter`] naming `surface.temperature_k`, `sun.zenith_deg` (the sun
-    /// must be above the horizon), `sun.azimuth_deg`, `sun.irradiance`, `sun.stokes`,
+    /// must be above the horizon), `sun.azimuth_deg` (finite, |φs| ≤ [`crate::MAX_AZIMUTH_DEG`]
+    /// as every azimuth), `sun.irradiance`, `sun.stokes`,
     /// `sky.radiance`, `sky.temperature_k`, `sky.irradiance`, `sky.dop_max`,
     /// `atmosphere.transmittance` or `atmosphere.path_radiance` (radiances and irradiances
     /// finite, ≥ 0 and at most 1e150); [`Error::InconsistentParameters`] for a cie-clear sky
@@ -167,11 +168,14 @@ impl ThermalScene {
                     reason: "the sun must be above the horizon: in [0, 90) degrees",
                 });
             }
-            if !sun.azimuth.is_finite() {
+            if !(sun.azimuth.is_finite()
+                && sun.azimuth.abs() <= crate::MAX_AZIMUTH_DEG.to_radians())
+            {
                 return Err(Error::InvalidParameter {
                     name: "sun.azimuth_deg",
                     value: sun.azimuth.to_degrees(),
-                    reason: "must be finite",
+                    reason: "must be finite and at most 1e8 degrees in magnitude \
+                             (polbrdf::MAX_AZIMUTH_DEG)",
                 });
             }
             crate::error::radiometric("sun.irradiance", sun.irradiance)?;
@@ -226,6 +230,21 @@ impl ThermalScene {
     /// azimuth-independent sky (the model is isotropic).
     pub fn is_azimuth_independent(&self) -> bool {
         self.sun.is_none() && self.sky.is_azimuth_independent()
+    }
+
+    /// The same scene with the sun's azimuth taken into `[0, 2π)` when it lies outside
+    /// `[−2π, 2π]` (the same direction): the views folded about the sun's vertical plane then
+    /// stay within a turn of it, inside [`crate::MAX_AZIMUTH_DEG`], however large the sun's
+    /// azimuth (a sun at the bound itself put a folded view beyond it: issue 35). Azimuths
+    /// within a turn are kept as given, bit for bit.
+    fn with_sun_azimuth_reduced(&self) -> Self {
+        let mut scene = self.clone();
+        if let Some(sun) = scene.sun.as_mut() {
+            if sun.azimuth.abs() > 2.0 * PI {
+                sun.azimuth = sun.azimuth.rem_euclid(2.0 * PI);
+            }
+        }
+        scene
     }
 
     /// The same scene with another surface temperature.
@@ -305,6 +324,7 @@ impl Observer {
     /// emissivity).
     pub fn new(spec: &MaterialSpec, scene: &ThermalScene, spectrum: &Spectrum) -> Result<Self> {
         scene.validate()?;
+        let scene = &scene.with_sun_azimuth_reduced();
         let nodes = spectrum.integral_nodes(&[spec]);
         let materials = Spectrum::materials(spec, &nodes)?;
         if let Some(m) = materials.first() {

@@ -57,8 +57,10 @@ impl ZenithProfile {
     ///
     /// # Errors
     /// [`Error::InvalidParameterAt`] for a zenith angle that is not finite, outside
-    /// `[0°, 90°]` or not above the previous one, or a radiance that is not finite and ≥ 0;
-    /// [`Error::InconsistentParameters`] for fewer than two rows or a table that does not
+    /// `[0°, 90°]` or not above the previous one, or a radiance that is not finite, ≥ 0 and at
+    /// most [`crate::error::MAX_RADIOMETRIC`] (1e150, as every radiance of a scene: beyond it
+    /// the sky integral overflows to ∞ and NaN); [`Error::InconsistentParameters`] for fewer
+    /// than two rows or a table that does not
     /// start at 0° and end at 90°.
     pub fn new(zenith_deg: Vec<f64>, radiance: Vec<f64>) -> Result<Self> {
         crate::geometry::batch::check_len("radiance", radiance.len(), zenith_deg.len())?;
@@ -80,8 +82,8 @@ impl ZenithProfile {
             if i > 0 && z <= zenith_deg[i - 1] {
                 return Err(at("zenith_deg", z, "zenith angles must increase strictly"));
             }
-            if !(l.is_finite() && l >= 0.0) {
-                return Err(at("radiance", l, "must be finite and >= 0"));
+            if !(l.is_finite() && (0.0..=crate::error::MAX_RADIOMETRIC).contains(&l)) {
+                return Err(at("radiance", l, "must be finite, >= 0 and at most 1e150"));
             }
         }
         if zenith_deg[0] != 0.0 || zenith_deg[zenith_deg.len() - 1] != 90.0 {

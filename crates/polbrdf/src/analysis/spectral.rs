@@ -19,6 +19,12 @@ use crate::error::{Error, Result};
 use crate::model::{Material, MaterialSpec};
 use crate::optics::dispersion::Dispersion;
 
+/// The most rows of a band's response: each row is a panel edge of the band quadrature, and
+/// every panel takes at least three evaluations of the model at every view (a 1.9 MB band file
+/// of 10⁵ rows ran for minutes: issue 35). 10⁴ rows hold a response at 1 nm from 0.3 µm to
+/// 10 µm; a finer measured response is resampled before use.
+pub const MAX_BAND_ROWS: usize = 10_000;
+
 /// A relative spectral response (module documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Band {
@@ -34,7 +40,7 @@ impl Band {
     /// # Errors
     /// [`Error::InvalidParameterAt`] naming `wavelength_um` or `response` and the element for a
     /// value that is not finite, a wavelength ≤ 0 or not above the previous one, or a negative
-    /// response; [`Error::InconsistentParameters`] for fewer than two points or a response that
+    /// response, and for a row beyond the [`MAX_BAND_ROWS`]th; [`Error::InconsistentParameters`] for fewer than two points or a response that
     /// is zero everywhere.
     pub fn new(name: &str, wavelengths: Vec<f64>, response: Vec<f64>) -> Result<Self> {
         let at = |name: &'static str, value: f64, index: usize, reason: &'static str| {
@@ -56,6 +62,16 @@ impl Band {
             return Err(Error::InconsistentParameters(format!(
                 "band `{name}`: a response needs at least two wavelengths"
             )));
+        }
+        if let Some(&l) = wavelengths.get(MAX_BAND_ROWS) {
+            return at(
+                "wavelength_um",
+                l,
+                MAX_BAND_ROWS,
+                "a band response has at most 10⁴ rows (polbrdf::analysis::spectral::\
+                 MAX_BAND_ROWS): each row is a panel edge of the band quadrature, three model \
+                 evaluations per view; resample a finer response",
+            );
         }
         for (i, (&l, &r)) in wavelengths.iter().zip(&response).enumerate() {
             if !(l.is_finite() && l > 0.0) {
