@@ -193,6 +193,8 @@ enum GeometryColumns {
     Directions([usize; 6]),
 }
 
+// Only the Arrow reader takes the geometry columns by position.
+#[cfg(feature = "arrow")]
 impl GeometryColumns {
     /// The positions of the geometry columns.
     fn indices(&self) -> &[usize] {
