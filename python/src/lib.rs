@@ -3,7 +3,7 @@
 //! The Python half (`python/polbrdf/__init__.py`) broadcasts the user's angles with NumPy and
 //! hands this module four contiguous 1-D float64 arrays of equal length. Everything here works
 //! on those flat arrays with the GIL released: in parallel chunks (rayon), each chunk converted
-//! from degrees on the stack when needed, validated as a core [`GeometryBatch`] and evaluated by
+//! from degrees on the stack when needed, validated as a core `polbrdf::GeometryBatch` and evaluated by
 //! the core's batch API ([`polbrdf::batch::mueller_into`], [`polbrdf::batch::brdf_dolp_into`]), writing straight
 //! into the NumPy output arrays.
 //!
@@ -17,10 +17,10 @@
 //! `InconsistentParameters` / `UnknownPreset` become `ValueError` with the core's message, file
 //! errors of `polbrdf-io` become `ValueError` (content) or an `OSError` subclass (reading).
 //!
-//! One module per concern: [`errors`] (exceptions), [`material`] (the `Material` class),
-//! [`buffers`] (flat arrays in, output arrays out), [`evaluation`] (the pBRDF kernels),
-//! [`thermal`] (Planck, emissivity), [`scene`] (the observed radiance, scene files), [`fit`]
-//! (fitting), [`tasks`] (the task layer's jobs: contrast, maps, albedo), [`vocabulary`]
+//! One module per concern: `errors` (exceptions), `material` (the `Material` class),
+//! `buffers` (flat arrays in, output arrays out), `evaluation` (the pBRDF kernels),
+//! `thermal` (Planck, emissivity), `scene` (the observed radiance, scene files), `fit`
+//! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
 //! sources); this file only registers what they define.
 

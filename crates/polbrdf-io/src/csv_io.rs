@@ -44,7 +44,7 @@ pub struct GeometryTable {
 /// The optional wavelength column of geometry and measurement files (µm).
 pub const WAVELENGTH_COLUMN: &str = "wavelength_um";
 
-/// The most bytes of a file read whole ([`read_all`]: material, scene, `lut` configuration,
+/// The most bytes of a file read whole (`read_all`: material, scene, `lut` configuration,
 /// refractive-index and whole `.npy` files): 16 MiB, far above any such file (the library's
 /// largest index file is under 100 kB), so that a device or a huge file named by mistake
 /// (`--material /dev/zero`) is an error naming it instead of a read until memory runs out.
