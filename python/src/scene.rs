@@ -7,7 +7,7 @@ use crate::material::PyMaterial;
 use crate::thermal::view_azimuth;
 use crate::thermal::view_zenith;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
-use polbrdf::analysis::scene::{observed_radiance, Atmosphere, SkyModel, Sun, ThermalScene};
+use polbrdf::analysis::scene::{check_views, Atmosphere, Observer, SkyModel, Sun, ThermalScene};
 use polbrdf::analysis::sky::{ClearSky, TableSky, ZenithProfile};
 use polbrdf::{Band, Spectrum};
 use polbrdf_io::scene::SkyKind;
@@ -414,9 +414,18 @@ fn observe<'py>(
         );
     }
     let spec = material.inner.spec();
-    let r = py
-        .detach(|| observed_radiance(spec, scene, spectrum, &views))
-        .map_err(|e| core_err(py, &e))?;
+    check_views(&views).map_err(|e| core_err(py, &e))?;
+    let observer = Observer::new(spec, scene, spectrum).map_err(|e| core_err(py, &e))?;
+    // The task layer's work bound (polbrdf radiance's), before anything is observed.
+    polbrdf_tasks::radiance::check_work(&observer, views.len()).map_err(|e| match e {
+        polbrdf_tasks::TaskError::Usage { message, .. } => {
+            let err = PyValueError::new_err(format!("invalid `theta_r`, `phi_r`: {message}"));
+            let _ = err.value(py).setattr("argument", "theta_r");
+            err
+        }
+        e => crate::tasks::task_err(py, &e),
+    })?;
+    let r = py.detach(|| observer.observe(&views));
     let at = |k: &usize| &r[*k];
     let to_unit = |a: f64| if degrees { a.to_degrees() } else { a };
     Ok((

@@ -6,8 +6,9 @@
 use crate::error::CliError;
 use crate::output::write_output;
 use polbrdf_io::CsvTable;
-use polbrdf_tasks::radiance::{radiance, RadianceRequest, RadianceTable, Views};
+use polbrdf_tasks::radiance::{radiance, RadianceRequest, RadianceTable, Views, VIEWS_FIELD};
 use polbrdf_tasks::spectrum::describe;
+use polbrdf_tasks::TaskError;
 use std::path::PathBuf;
 
 /// `polbrdf radiance`.
@@ -75,6 +76,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         material: args.material.clone(),
         scene: args.scene.clone(),
         views,
+    })
+    .map_err(|e| match e {
+        TaskError::Usage { field, message } if field == VIEWS_FIELD => {
+            CliError::Usage(format!("--theta-deg × --phi-deg (or --input): {message}"))
+        }
+        e => e.into(),
     })?;
     let mut csv = CsvTable::new(RadianceTable::COLUMNS);
     for row in table.values() {

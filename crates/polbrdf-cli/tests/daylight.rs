@@ -216,3 +216,53 @@ fn a_sky_table_of_one_unpolarized_radiance_is_the_uniform_sky() {
         }
     }
 }
+
+/// A radiance bounded by the work it implies (issue 35): 1000 × 1000 views (within the 10⁶
+/// views of `--theta-deg × --phi-deg`) under a clear sky are 10⁶ sky integrals, about 20 minutes
+/// on one core: refused before anything is computed, naming the options and the limit (exit 2).
+/// The same grid's first 10 × 10 views are computed.
+#[test]
+fn a_radiance_above_its_work_budget_is_refused_before_computing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scene = write(
+        d,
+        "clear.toml",
+        &format!("{SUN}[sky]\nmodel = \"cie-clear\"\nirradiance = 100\n"),
+    );
+    let grid = |n: usize, step: f64| {
+        (0..n)
+            .map(|k| format!("{}", k as f64 * step))
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    let (thetas, phis) = (grid(1000, 0.089), grid(1000, 0.36));
+    let paint = example("olive-paint.toml");
+    let args = |t: &str, p: &str| {
+        [
+            "radiance",
+            "--material",
+            &paint,
+            "--scene",
+            &scene,
+            "--theta-deg",
+            t,
+            "--phi-deg",
+            p,
+        ]
+        .map(String::from)
+    };
+    let big = args(&thetas, &phis);
+    let o = polbrdf(&big.each_ref().map(String::as_str));
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    let e = stderr(&o);
+    assert!(
+        e.contains("polbrdf: error: --theta-deg × --phi-deg (or --input): 1000000 view(s) × 1 spectral node(s) under an azimuth-dependent sky")
+            && e.contains("imply 1.000e9 units of work, at most 1e8"),
+        "{e}"
+    );
+    let small = args(&grid(10, 0.089), &grid(10, 0.36));
+    let text = run(&small.each_ref().map(String::as_str));
+    assert_eq!(numbers(&text, RADIANCE_COLUMNS).len(), 100);
+}

@@ -4,6 +4,7 @@
 use crate::error::{TaskError, TaskResult};
 use crate::scene::{check_single_surface, observer, read_scene};
 use crate::spectrum::NamedMaterial;
+use polbrdf::analysis::scene::Observer;
 use polbrdf::Stokes;
 use polbrdf_io::Scene;
 use std::path::PathBuf;
@@ -70,6 +71,43 @@ impl Views {
             }
         }
     }
+}
+
+/// The most work a radiance request may imply ([`polbrdf::analysis::scene::Observer::work`]):
+/// 10⁸ evaluations at one spectral node, about 2 minutes on one core of the reference host
+/// (docs/io.md "Resource model"): 10⁸ views × spectral nodes of a scene without an
+/// azimuth-dependent sky, 10⁵ under a cie-clear or table sky.
+pub const MAX_WORK: f64 = 1e8;
+
+/// The field of [`check_work`]'s error: the views as a whole (a grid's two axes or a list).
+pub const VIEWS_FIELD: &str = "views";
+
+/// Refuses, before anything is computed, an observation of `views` views whose work exceeds
+/// [`MAX_WORK`].
+///
+/// # Errors
+/// [`TaskError::Usage`] of the field [`VIEWS_FIELD`] (the adapters name their options or
+/// arguments for it), its message naming the views, the spectral nodes, the sky, the work and
+/// the limit.
+pub fn check_work(observer: &Observer, views: usize) -> TaskResult<()> {
+    let work = observer.work(views);
+    if work <= MAX_WORK {
+        return Ok(());
+    }
+    let sky = if observer.has_azimuth_sky() {
+        "under an azimuth-dependent sky (one sky integral per view and node)"
+    } else {
+        "without an azimuth-dependent sky"
+    };
+    Err(TaskError::usage(
+        VIEWS_FIELD,
+        format!(
+            "{views} view(s) × {} spectral node(s) {sky} imply {work:.3e} units of work, at \
+             most {MAX_WORK:.0e} (about 2 minutes on one core; see docs/io.md, Resource model): \
+             give fewer views, or a coarser band step",
+            observer.spectral_nodes()
+        ),
+    ))
 }
 
 /// A radiance request.
@@ -143,6 +181,7 @@ pub fn radiance(request: &RadianceRequest) -> TaskResult<RadianceTable> {
         scene.thermal.surface_temperature_k,
         ("material", &request.material),
     )?;
+    check_work(&observer, views.len())?;
     let radians: Vec<(f64, f64)> = views
         .iter()
         .map(|(t, p)| (t.to_radians(), p.to_radians()))

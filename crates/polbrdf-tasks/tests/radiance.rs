@@ -165,3 +165,67 @@ fn view_angles_are_checked() {
     .unwrap();
     assert_eq!(d.len(), 18, "default 0, 5, …, 85 at φ = 0");
 }
+
+/// The observer of `material` in the scene file `scene`.
+fn observer_of(material: &str, scene: &std::path::Path) -> polbrdf::analysis::scene::Observer {
+    let scene = polbrdf_tasks::scene::read_scene(scene).unwrap();
+    let m = polbrdf_tasks::spectrum::NamedMaterial::load(material, "material").unwrap();
+    polbrdf_tasks::scene::observer(&m, &scene, None, ("material", material)).unwrap()
+}
+
+/// The work bound (issue 35): a sky integral per view and spectral node under a clear sky, one
+/// evaluation per view and node without one; refused above `MAX_WORK`, accepted at it, and
+/// `radiance` refuses 1000 × 1000 views under a clear sky before computing any.
+#[test]
+fn radiance_is_bounded_by_the_work_its_views_imply() {
+    use polbrdf_tasks::radiance::{check_work, MAX_WORK};
+    let dir = tempfile::tempdir().unwrap();
+    let paint = example("olive-paint.toml").display().to_string();
+    let sun = "wavelength_um = 0.55\n[sun]\nzenith_deg = 40\nirradiance = 1000\n";
+    let clear = write(
+        dir.path(),
+        "clear.toml",
+        &format!("{sun}[sky]\nmodel = \"cie-clear\"\nirradiance = 100\n"),
+    );
+    let o = observer_of(&paint, &clear);
+    assert!(o.has_azimuth_sky());
+    let at_limit = (MAX_WORK / polbrdf::analysis::scene::SKY_INTEGRAL_WORK) as usize;
+    assert_eq!(at_limit, 100_000);
+    assert!(check_work(&o, at_limit).is_ok());
+    match check_work(&o, at_limit + 1) {
+        Err(TaskError::Usage { field, message }) => {
+            assert_eq!(field, "views");
+            assert!(
+                message.contains("100001 view(s) × 1 spectral node(s)"),
+                "{message}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    // Without an azimuth-dependent sky, over a band: views × nodes evaluations.
+    let band = band_scene(dir.path(), "band.toml", "[surface]\ntemperature_k = 300\n");
+    let lwir = example("painted-aluminium-lwir.toml").display().to_string();
+    let o = observer_of(&lwir, &band);
+    assert!(!o.has_azimuth_sky());
+    let nodes = o.spectral_nodes();
+    assert!(nodes > 1);
+    let at_limit = (MAX_WORK / nodes as f64).floor() as usize;
+    assert!(check_work(&o, at_limit).is_ok());
+    assert!(check_work(&o, at_limit + 1).is_err());
+    // The job itself refuses before observing.
+    let grid: Vec<f64> = (0..1000).map(|k| f64::from(k) * 0.089).collect();
+    let e = radiance(&RadianceRequest {
+        material: paint,
+        scene: clear,
+        views: Views::Grid {
+            theta_deg: grid.clone(),
+            phi_deg: grid,
+        },
+    })
+    .unwrap_err();
+    assert!(
+        matches!(&e, TaskError::Usage { field, message }
+            if field == "views" && message.contains("1000000 view(s)")),
+        "{e:?}"
+    );
+}
