@@ -27,9 +27,10 @@ pub struct Args<'a> {
 /// Runs `polbrdf fit` on a measurement CSV (`main` sends a `.pbsdf` table to
 /// the `.pbsdf` fit of `measured.rs`; the output layer's checks of the paths ran before).
 pub fn run(args: &Args<'_>) -> Result<(), CliError> {
-    let base = polbrdf_io::load_material(args.material)?;
+    // Options before data (issue 35): no file is read for a command line that is refused.
     let free = Param::parse_list(args.free)?;
     crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
+    let base = polbrdf_io::load_material(args.material)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
     let data = polbrdf_tasks::fit::measurements(&table)?;
     drop(table);

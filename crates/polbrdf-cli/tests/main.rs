@@ -15,6 +15,7 @@ mod fit;
 mod golden;
 mod lut;
 mod map;
+mod options;
 mod outputs;
 mod pbsdf;
 mod presets;

@@ -81,8 +81,9 @@ pub fn check(request: &CheckRequest) -> TaskResult<CheckOutcome> {
             format!("{g}: must lie in (0, 30]"),
         ));
     }
-    let spec = polbrdf_io::load_material(&request.material)?;
+    // The spectral options before the material file (issue 35: options before data).
     let spectrum = request.spectral.spectrum()?;
+    let spec = polbrdf_io::load_material(&request.material)?;
     let material = crate::spectrum::NamedMaterial {
         name: spec
             .name

@@ -1,0 +1,217 @@
+//! Options before data (issue 35): for every command with a numeric or enumerated option, an
+//! invalid value given with input files that do not exist is reported as the option's error,
+//! naming the option, and no file is read. Only the binary's argument checks run: fast.
+
+use crate::common::{polbrdf, stderr};
+
+/// A file that does not exist.
+const MISSING: &str = "/nonexistent-polbrdf-input/x";
+
+/// Per command: the command line (`{}` is a missing input file) and what the error names.
+const CASES: &[(&[&str], &str)] = &[
+    (
+        &[
+            "eval",
+            "--material",
+            "{}",
+            "--input",
+            "{}",
+            "--theta-i-deg",
+            "x",
+        ],
+        "--theta-i-deg",
+    ),
+    (
+        &["fit", "--material", "{}", "--data", "{}", "--free", "bogus"],
+        "unknown parameter `bogus`",
+    ),
+    (
+        &[
+            "fit",
+            "--material",
+            "{}",
+            "--data",
+            "{}",
+            "--free",
+            "n",
+            "--starts",
+            "10001",
+        ],
+        "--starts = 10001",
+    ),
+    (
+        &[
+            "fit",
+            "--material",
+            "{}",
+            "--data",
+            "{}.pbsdf",
+            "--free",
+            "n",
+            "--starts",
+            "10001",
+        ],
+        "--starts = 10001",
+    ),
+    (
+        &[
+            "radiance",
+            "--material",
+            "{}",
+            "--scene",
+            "{}",
+            "--theta-deg",
+            "95",
+        ],
+        "--theta-deg",
+    ),
+    (
+        &[
+            "radiance",
+            "--material",
+            "{}",
+            "--scene",
+            "{}",
+            "--phi-deg",
+            "nan",
+        ],
+        "--phi-deg",
+    ),
+    (
+        &[
+            "emission",
+            "--material",
+            "{}",
+            "--band",
+            "{}",
+            "--theta-deg",
+            "95",
+        ],
+        "--theta-deg",
+    ),
+    (
+        &[
+            "albedo",
+            "--material",
+            "{}",
+            "--band",
+            "{}",
+            "--theta-i-deg",
+            "95",
+        ],
+        "--theta-i-deg",
+    ),
+    (
+        &[
+            "map",
+            "--material",
+            "{}",
+            "--band",
+            "{}",
+            "--sun-zenith-deg",
+            "95",
+        ],
+        "sun_zenith_deg",
+    ),
+    (
+        &[
+            "map",
+            "--material",
+            "{}",
+            "--band",
+            "{}",
+            "--sun-zenith-deg",
+            "30",
+            "--grid-deg",
+            "0",
+        ],
+        "grid_deg",
+    ),
+    (
+        &[
+            "contrast",
+            "--target",
+            "{}",
+            "--background",
+            "{}",
+            "--scene",
+            "{}",
+            "--top",
+            "0",
+        ],
+        "--top",
+    ),
+    (
+        &[
+            "contrast",
+            "--target",
+            "{}",
+            "--background",
+            "{}",
+            "--scene",
+            "{}",
+            "--grid-deg",
+            "0",
+        ],
+        "grid_deg",
+    ),
+    (
+        &[
+            "contrast",
+            "--target",
+            "{}",
+            "--background",
+            "{}",
+            "--scene",
+            "{}",
+            "--rank-by",
+            "bogus",
+        ],
+        "--rank-by",
+    ),
+    (
+        &[
+            "spectrum",
+            "--material",
+            "{}",
+            "--points",
+            "1000001",
+            "--out",
+            "{}.dir",
+        ],
+        "--points = 1000001",
+    ),
+    (
+        &["check", "--material", "{}", "--grid-deg", "0"],
+        "--grid-deg",
+    ),
+    (
+        &[
+            "export",
+            "--material",
+            "{}",
+            "--grid",
+            "1,1,1",
+            "--out",
+            "{}.pbsdf",
+        ],
+        "--grid",
+    ),
+];
+
+#[test]
+fn an_invalid_option_is_reported_before_any_input_is_read() {
+    for (args, names) in CASES {
+        let args: Vec<String> = args.iter().map(|a| a.replace("{}", MISSING)).collect();
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = polbrdf(&refs);
+        let e = stderr(&o);
+        assert!(
+            matches!(o.status.code(), Some(2 | 3)),
+            "{args:?}: exit {:?}: {e}",
+            o.status.code()
+        );
+        assert!(e.contains(names), "{args:?}: {e}");
+        assert!(!e.contains("nonexistent-polbrdf-input"), "{args:?}: {e}");
+    }
+}
