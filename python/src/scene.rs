@@ -415,7 +415,11 @@ fn observe<'py>(
     }
     let spec = material.inner.spec();
     check_views(&views).map_err(|e| core_err(py, &e))?;
-    let observer = Observer::new(spec, scene, spectrum).map_err(|e| core_err(py, &e))?;
+    // The observer's setup (spectral materials, the prepared sky) with the GIL released, as the
+    // observation itself.
+    let observer = py
+        .detach(|| Observer::new(spec, scene, spectrum))
+        .map_err(|e| core_err(py, &e))?;
     // The task layer's work bound (polbrdf radiance's), before anything is observed.
     polbrdf_tasks::radiance::check_work(&observer, views.len()).map_err(|e| match e {
         polbrdf_tasks::TaskError::Usage { message, .. } => {
