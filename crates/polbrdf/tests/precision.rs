@@ -1,18 +1,19 @@
 //! The single-precision output of the batch engine (`Precision::F32`, docs/model.md §12): the
 //! model computed in f32 within the float32 contract — every entry within
 //! `1e-5·F00 + 1e-6·P + 2⁻¹⁵⁰` of float64, `P` the material's F00 at the specular direction of
-//! the same θi — at every SIMD level, on every test vector and on random materials and
-//! geometries (grazing, near-specular, large σ, metals with large k, indices near 1, the
-//! extreme bounds of the parameters, the peer benchmark's conductor, a σ = 5° conductor down its
-//! lobe's tail); most elements really are computed in f32; entries beyond f32's range are
+//! the same θi — at every SIMD level, from angles and from direction vectors, on every test
+//! vector and on random materials and geometries (grazing, near-specular, large σ, metals with
+//! large k, indices near 1, the extreme bounds of the parameters, the peer benchmark's
+//! conductor, a σ = 5° conductor down its lobe's tail); most elements really are computed in f32; entries beyond f32's range are
 //! refused.
 
 use crate::common::{cases, geometry, spec_of};
 use crate::kernel::{random_geometry, random_material};
 use polbrdf::engine::batch::STREAM_MIN;
 use polbrdf::engine::{Engine, Kernel, Precision, SimdLevel};
+use polbrdf::geometry::direction;
 use polbrdf::sample::SplitMix64 as Rng;
-use polbrdf::{Error, GeometryBatch, Material, MaterialSpec};
+use polbrdf::{DirectionBatch, Error, GeometryBatch, Material, MaterialSpec};
 use std::f64::consts::{PI, TAU};
 
 /// The float32 contract's part relative to the element's F00.
@@ -44,7 +45,8 @@ fn specular_f00(engine: &Engine<'_>, geoms: &[[f64; 4]]) -> Vec<f64> {
     out.iter().map(|f| f[0]).collect()
 }
 
-/// Evaluates `geoms` (radians) in both precisions at every SIMD level of this CPU, checks every
+/// Evaluates `geoms` (radians) in both precisions at every SIMD level of this CPU, as angles
+/// and as direction vectors (each route's f32 against its f64), checks every
 /// entry against the float32 contract and returns the worst share of the contract's bound used
 /// (≤ 1) and the smallest fraction of elements whose f32 result is not the f64 one rounded
 /// (computed in f32).
@@ -52,6 +54,9 @@ fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> (f64, f64) {
     let cols = columns(geoms);
     let batch = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).unwrap();
     let p = specular_f00(&Engine::new(m), geoms);
+    let w_i: Vec<[f64; 3]> = geoms.iter().map(|g| direction(g[0], g[1])).collect();
+    let w_r: Vec<[f64; 3]> = geoms.iter().map(|g| direction(g[2], g[3])).collect();
+    let dirs = DirectionBatch::new(&w_i, &w_r).unwrap();
     let (mut worst, mut in_f32) = (0.0_f64, 1.0_f64);
     for level in SimdLevel::supported() {
         let k = Kernel::with_level(m, level).unwrap();
@@ -63,6 +68,16 @@ fn check(label: &str, m: &Material, geoms: &[[f64; 4]]) -> (f64, f64) {
             "{label}: overflow"
         );
         let (w, f) = compare(&format!("{label}, {level:?}"), &f64s, &f32s, &p, geoms);
+        (worst, in_f32) = (worst.max(w), in_f32.min(f));
+        // The direction route (its own geometry stages) from the same geometries as unit
+        // vectors.
+        k.mueller_into(&dirs, 0, &mut f64s);
+        assert!(
+            !k.mueller_f32_into(&dirs, 0, &mut f32s),
+            "{label}: overflow"
+        );
+        let label = format!("{label}, directions, {level:?}");
+        let (w, f) = compare(&label, &f64s, &f32s, &p, geoms);
         (worst, in_f32) = (worst.max(w), in_f32.min(f));
     }
     (worst, in_f32)

@@ -12,6 +12,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::geometry::angles::{self, AngleVariables, FacetAngles, Trig};
+use crate::geometry::vectors::{azimuth_axis, unit, VectorGeometry};
 use crate::model::material::ModelParams;
 use crate::model::shadowing::{AzimuthTerm, Shadowing};
 use crate::model::terms::{self, Form};
@@ -262,7 +263,23 @@ pub(crate) struct GeomScratch<const N: usize, T = f64> {
     /// then of `w_r`), as given.
     pub dirs: [Lanes<N>; 6],
     pub trig: TrigLanes<N, T>,
+    /// What the direction route carries from its f64 stage to its `T` stage.
+    pub vec: VectorLanes<N, T>,
     pub geo: Geom<N, T>,
+}
+
+/// The direction route's quantities between its f64 and `T` stages
+/// ([`geometry_of_directions`]).
+pub(crate) struct VectorLanes<const N: usize, T = f64> {
+    /// `|s_xy|²`.
+    pub rho2: Lanes<N, T>,
+    /// `sin²θi`.
+    pub sin2_i: Lanes<N, T>,
+    /// ΦN's components along and across the plane of incidence.
+    pub along: Lanes<N, T>,
+    pub across: Lanes<N, T>,
+    /// `|s_xy|` at rounding level (ΦN = 0).
+    pub flat: [bool; N],
 }
 
 impl<const N: usize, T: Real> GeomScratch<N, T> {
@@ -271,6 +288,13 @@ impl<const N: usize, T: Real> GeomScratch<N, T> {
             input: BlockIn::zeroed(),
             dirs: [[0.0; N]; 6],
             trig: TrigLanes::zeroed(),
+            vec: VectorLanes {
+                rho2: [T::ZERO; N],
+                sin2_i: [T::ZERO; N],
+                along: [T::ZERO; N],
+                across: [T::ZERO; N],
+                flat: [false; N],
+            },
             geo: Geom::zeroed(),
         }
     }
@@ -323,16 +347,18 @@ pub(crate) fn geometry<M: Math, const N: usize, const PAIRS: bool>(
         let t = Trig::from_reduced::<M>(trig.get_reduced(j));
         trig.set(j, t);
     }
-    facet_stages::<M, N, PAIRS>(trig, g, needs, Some(b));
+    facet_stages::<M, N, PAIRS>(trig, g, needs, b);
 }
 
-/// The geometry stages of the block of direction vectors `s.dirs` (the direction entry point,
-/// [`Trig::from_directions`]) into `s.geo`, as [`geometry`] does for angles: the sines and
-/// cosines from the vectors, in f64 on both kernels (the f32 kernel rounds them to f32: from
-/// f32-rounded vectors near grazing, β lost 3.6·10⁻⁵ of F00), θi only where SO needs it, then
-/// the same stages. An element whose azimuth's unit vector would lose digits (`x² + y²` of a
-/// normalized vector below f64's `TINY`, or underflowed to 0, while `(x, y)` is not exactly 0:
-/// within about 1e-140 rad of the normal) takes the one-geometry path. `z > 0` is above the horizon (docs/model.md §9.11).
+/// The geometry stages of the block of direction vectors `s.dirs` (the direction entry point)
+/// into `s.geo`, natively: sums, differences, dot and cross products of the unit vectors in
+/// f64 ([`VectorGeometry`]: the normalization, the half vector, `sin²β = |d|²/4`, the
+/// Priest–Meier pairs, the parts of ΦN), rounded to `M::F`; then in `M::F` the angles the
+/// model needs, θN = `atan2(|s_xy|, s_z)`, cosβ = `|s|/2`, and β, θi, ΦN only where `needs`
+/// says. No conversion to the sines and cosines of angles. An element whose azimuth's axis
+/// would lose digits (`x² + y²` of a unit vector below f64's `TINY`, or underflowed to 0,
+/// while `(x, y)` is not exactly 0: within about 1e-140 rad of the normal) takes the
+/// one-geometry path. `z > 0` is above the horizon (docs/model.md §9.11).
 #[inline(always)]
 pub(crate) fn geometry_of_directions<M: Math, const N: usize, const PAIRS: bool>(
     s: &mut GeomScratch<N, M::F>,
@@ -340,47 +366,117 @@ pub(crate) fn geometry_of_directions<M: Math, const N: usize, const PAIRS: bool>
 ) where
     M::F: Thresholds,
 {
+    if needs.phi_n {
+        vector_stage::<M, N, PAIRS, true>(s);
+    } else {
+        vector_stage::<M, N, PAIRS, false>(s);
+    }
+    let (v, g) = (&s.vec, &mut s.geo);
+    let f = &mut g.facet.v;
+    let half = M::F::of(0.5);
+    for j in 0..N {
+        f[3][j] = M::atan2_pos(v.rho2[j].sqrt(), f[8][j]);
+        f[6][j] = half * f[9][j].sqrt();
+    }
+    if needs.beta {
+        for j in 0..N {
+            f[4][j] = M::atan2_pos(f[7][j].sqrt(), f[6][j]);
+            f[0][j] = M::atan2_pos(v.sin2_i[j].sqrt(), f[1][j].max(M::F::ZERO));
+        }
+    }
+    if needs.phi_n {
+        let right = M::F::of(FRAC_PI_2);
+        for j in 0..N {
+            let d = M::atan2_pos(v.across[j].abs(), v.along[j].abs()).min(right);
+            f[5][j] = if v.flat[j] { M::F::ZERO } else { d };
+        }
+    }
+}
+
+/// The direction route this crate had before [`geometry_of_directions`] (the reference its
+/// tests hold it to): the vectors converted to the sines and cosines of their angles
+/// ([`Trig::from_directions`], in f64), then the angle route's stages.
+#[cfg(test)]
+pub(crate) fn geometry_of_directions_via_angles<M: Math, const N: usize>(
+    s: &mut GeomScratch<N, M::F>,
+    needs: AngleNeeds,
+) {
+    // Azimuth scale 1 for vectors (φ = 0 here).
+    s.input = BlockIn::zeroed();
     let (w, trig, g) = (&s.dirs, &mut s.trig, &mut s.geo);
     for j in 0..N {
         let wi = [w[0][j], w[1][j], w[2][j]];
         let wr = [w[3][j], w[4][j], w[5][j]];
         let (t, r2) = Trig::<f64>::from_directions(wi, wr);
         let of = M::F::of;
+        let t = [t.si, t.ci, t.sr, t.cr, t.sh, t.ch, t.su, t.cu].map(of);
+        let [si, ci, sr, cr, sh, ch, su, cu] = t;
         trig.set(
             j,
             Trig {
-                si: of(t.si),
-                ci: of(t.ci),
-                sr: of(t.sr),
-                cr: of(t.cr),
-                sh: of(t.sh),
-                ch: of(t.ch),
-                su: of(t.su),
-                cu: of(t.cu),
+                si,
+                ci,
+                sr,
+                cr,
+                sh,
+                ch,
+                su,
+                cu,
             },
         );
         g.valid[j] = wi[2] > 0.0 && wr[2] > 0.0;
-        g.out_of_range[j] = r2 < <f64 as Thresholds>::TINY;
-    }
-    if needs.beta {
-        for j in 0..N {
-            let t = trig.get(j);
-            trig.theta_i[j] = M::atan2_pos(t.si, t.ci.max(M::F::ZERO));
+        g.out_of_range[j] = r2 < 1e-280;
+        if needs.beta {
+            trig.theta_i[j] = M::atan2_pos(si, ci.max(M::F::ZERO));
         }
     }
-    facet_stages::<M, N, PAIRS>(trig, g, needs, None);
+    facet_stages::<M, N, true>(trig, g, needs, &s.input);
+}
+
+/// The f64 part of [`geometry_of_directions`]: [`VectorGeometry`] of each element, rounded to
+/// `M::F` into `s.geo` (cosines, `s_z`, `|s|²`, `sin²β`, the pairs with `PAIRS`) and `s.vec`;
+/// with `PHI`, ΦN's components (scaled by a power of two, so that f32 holds them) and whether
+/// `|s_xy|` is at rounding level.
+#[inline(always)]
+fn vector_stage<M: Math, const N: usize, const PAIRS: bool, const PHI: bool>(
+    s: &mut GeomScratch<N, M::F>,
+) where
+    M::F: Thresholds,
+{
+    let (w, v, g) = (&s.dirs, &mut s.vec, &mut s.geo);
+    let pair_min = M::F::PAIR_MIN.to_f64();
+    let of = M::F::of;
+    for j in 0..N {
+        let wi = [w[0][j], w[1][j], w[2][j]];
+        let wr = [w[3][j], w[4][j], w[5][j]];
+        let x = VectorGeometry::new(wi, wr, [unit(wi), unit(wr)], pair_min);
+        let f = &mut g.facet.v;
+        [f[1][j], f[2][j], f[7][j], f[8][j], f[9][j]] =
+            [x.cos_i, x.cos_r, x.sin2_beta, x.sz, x.s2].map(of);
+        v.rho2[j] = of(x.rho2);
+        v.sin2_i[j] = of(x.sin2_i);
+        if PAIRS {
+            [g.pairs[0][j], g.pairs[1][j], g.pairs[2][j], g.pairs[3][j]] = x.pairs.map(of);
+        }
+        if PHI {
+            let [along, across] = azimuth_axis(x.along, x.across);
+            (v.along[j], v.across[j], v.flat[j]) = (of(along), of(across), x.flat());
+        }
+        g.valid[j] = wi[2] > 0.0 && wr[2] > 0.0;
+        g.out_of_range[j] = x.off_normal < <f64 as Thresholds>::TINY;
+    }
 }
 
 /// The stages of [`geometry`] after the sines and cosines: the angles (θN, β where `needs`
 /// says), the cosines, ΦN and, with `PAIRS`, the Priest–Meier pairs. ΦN's rounding level
-/// ([`angles::phi_n`]) takes the azimuths' scale from `angles` when they were given as angles,
-/// 1 for direction vectors (whose components carry relative rounding only).
+/// ([`angles::phi_n`]) takes the azimuths' scale from the angles (direction vectors, whose
+/// components carry relative rounding only, have their own stages with scale 1).
 #[inline(always)]
 fn facet_stages<M: Math, const N: usize, const PAIRS: bool>(
     trig: &TrigLanes<N, M::F>,
     g: &mut Geom<N, M::F>,
     needs: AngleNeeds,
-    angles_in: Option<&BlockIn<N>>,
+    angles_in: &BlockIn<N>,
 ) {
     // Stage 3: the angles (θN, β) and cosines, β only where SO needs it; ΦN (eq3 only) in a
     // loop of its own. Materials without them do not pay for their arctangents.
@@ -398,7 +494,7 @@ fn facet_stages<M: Math, const N: usize, const PAIRS: bool>(
     if needs.phi_n {
         for j in 0..N {
             let t = trig.get(j);
-            let scale = angles_in.map_or(1.0, |b| angles::phi_scale(b.pi[j], b.pr[j]));
+            let scale = angles::phi_scale(angles_in.pi[j], angles_in.pr[j]);
             g.facet.v[5][j] = angles::phi_n::<M>(&angles::half_vector::<M>(&t), &t, scale);
         }
     }

@@ -6,6 +6,7 @@ pub mod angles;
 pub mod batch;
 pub mod direction;
 pub mod rusinkiewicz;
+pub(crate) mod vectors;
 
 pub use angles::AngleVariables;
 pub use batch::{Batch, DirectionBatch, GeometryBatch};

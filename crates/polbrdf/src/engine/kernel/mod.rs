@@ -539,6 +539,9 @@ impl<'a> Kernel<'a> {
 }
 
 #[cfg(test)]
+mod direction_route;
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::engine::block::{self, AngleNeeds, BlockIn, Front, GeomScratch};
