@@ -9,8 +9,8 @@
 //! `avx512`, `avx2+fma` or `portable`. It evaluates the peer benchmark's conductor
 //! (`scripts/bench-peers`: n = 1.2, k = 7, σ = atan 0.2, shadowing off) at `COUNT` random
 //! geometries (θ uniform in [0°, 89.9°], φ in [0°, 360°), the same as `polbrdf bench`), row
-//! major, `REPEATS` times (default 1), and prints the thread's CPU nanoseconds per element of
-//! each repeat and a checksum. Under `valgrind --tool=callgrind` two counts give the
+//! major, `REPEATS` times (default 1), and prints the CPU nanoseconds per element of the
+//! batches' validation and of each repeat (the thread's), and a checksum. Under `valgrind --tool=callgrind` two counts give the
 //! instructions per element: `(I(N₂) − I(N₁))/(N₂ − N₁)` (valgrind has no AVX-512: it runs the
 //! AVX2 code).
 
@@ -19,16 +19,21 @@ use polbrdf::geometry::direction;
 use polbrdf::sample::SplitMix64;
 use polbrdf::{DirectionBatch, GeometryBatch, MaterialSpec};
 
-/// The thread's CPU time (ns).
-fn cpu_ns() -> u128 {
+/// The CPU time (ns) of `clock` (the thread's, or the process's).
+fn clock_ns(clock: libc::clockid_t) -> u128 {
     let mut ts = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
     // SAFETY: `ts` is a valid timespec to write to.
-    let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0;
+    let ok = unsafe { libc::clock_gettime(clock, &mut ts) } == 0;
     assert!(ok, "clock_gettime");
     ts.tv_sec as u128 * 1_000_000_000 + ts.tv_nsec as u128
+}
+
+/// The thread's CPU time (ns).
+fn cpu_ns() -> u128 {
+    clock_ns(libc::CLOCK_THREAD_CPUTIME_ID)
 }
 
 fn main() {
@@ -60,8 +65,18 @@ fn main() {
     });
     let w_i: Vec<[f64; 3]> = (0..n).map(|j| direction(cols[0][j], cols[1][j])).collect();
     let w_r: Vec<[f64; 3]> = (0..n).map(|j| direction(cols[2][j], cols[3][j])).collect();
+    // The batches' validation (one pass over the inputs, on the library's thread pool: the
+    // process's CPU time).
+    let start = clock_ns(libc::CLOCK_PROCESS_CPUTIME_ID);
     let angles = GeometryBatch::new(&cols[0], &cols[1], &cols[2], &cols[3]).expect("angles");
+    let mid = clock_ns(libc::CLOCK_PROCESS_CPUTIME_ID);
     let dirs = DirectionBatch::new(&w_i, &w_r).expect("directions");
+    let end = clock_ns(libc::CLOCK_PROCESS_CPUTIME_ID);
+    println!(
+        "validation: angles {:.3} ns/element, directions {:.3} ns/element (process CPU)",
+        (mid - start) as f64 / n as f64,
+        (end - mid) as f64 / n as f64
+    );
     let (mut out64, mut out32) = (vec![[0.0f64; 16]; n], vec![[0.0f32; 16]; n]);
     let mut checksum = 0.0;
     for _ in 0..repeats {
