@@ -20,7 +20,7 @@
 //! | file | stage |
 //! |---|---|
 //! | [`simd`] | which instruction set |
-//! | `block` | the block kernel: sines and cosines → angles → `q` → D, SO, `g`, `f_v` → Fresnel amplitudes → rotations → F, or → BRDF, DoLP (AoLP) |
+//! | `block` | the block kernel: sines and cosines → angles (or, from direction vectors, `geometry::vectors`' sums, differences, dot and cross products → angles) → `q` → D, SO, `g`, `f_v` → Fresnel amplitudes → rotations → F, or → BRDF, DoLP (AoLP) |
 //! | [`kernel`] | the serial driver ([`Kernel`]): blocks, the per-element index ([`IndexColumns`]), the elements the block kernel must not take |
 //! | [`planes`] | the planar (structure-of-arrays) output |
 //! | [`batch`] | the parallel driver ([`Engine`], and the free functions of earlier releases) |
