@@ -98,11 +98,22 @@ fn mueller_sum(
     dirs: &[(f64, f64)],
 ) -> TaskResult<Vec<[f64; 16]>> {
     let n = dirs.len();
-    let ti = vec![light.theta_i(); n];
-    let pi = vec![light.phi_i(); n];
     let tr: Vec<f64> = dirs.iter().map(|d| d.0.clamp(0.0, FRAC_PI_2)).collect();
     let pr: Vec<f64> = dirs.iter().map(|d| d.1).collect();
-    let batch = GeometryBatch::new(&ti, &pi, &tr, &pr)?;
+    mueller_sum_at(
+        nodes,
+        [&vec![light.theta_i(); n], &vec![light.phi_i(); n], &tr, &pr],
+    )
+}
+
+/// `Σ w·F` over the spectral nodes at the geometries of the angle columns `[θi, φi, θr, φr]`
+/// (rad).
+fn mueller_sum_at(
+    nodes: &[(f64, Material)],
+    [ti, pi, tr, pr]: [&[f64]; 4],
+) -> TaskResult<Vec<[f64; 16]>> {
+    let n = ti.len();
+    let batch = GeometryBatch::new(ti, pi, tr, pr)?;
     let mut sum = vec![[0.0; 16]; n];
     let mut f = vec![[0.0; 16]; n];
     for (w, m) in nodes {
@@ -170,14 +181,21 @@ pub fn in_plane(
     let theta_i_deg: Vec<f64> = (0..=last)
         .map(|k| f64::from(k) * IN_PLANE_STEP_DEG)
         .collect();
-    let specular_dolp = theta_i_deg
+    let theta: Vec<f64> = theta_i_deg.iter().map(|t| t.to_radians()).collect();
+    let n = theta.len();
+    let specular = mueller_sum_at(
+        &nodes,
+        [
+            &theta,
+            &vec![light.phi_i(); n],
+            &theta,
+            &vec![light.phi_i() + PI; n],
+        ],
+    )?;
+    let specular_dolp = specular
         .iter()
-        .map(|t| {
-            let at = Illumination::new(t.to_radians(), light.phi_i(), s_in)?;
-            let f = mueller_sum(&nodes, &at, &[(t.to_radians(), light.phi_i() + PI)])?;
-            Ok(Mueller::from_row_major(&f[0]).apply(&s_in).dolp())
-        })
-        .collect::<TaskResult<Vec<f64>>>()?;
+        .map(|f| Mueller::from_row_major(f).apply(&s_in).dolp())
+        .collect();
     Ok(InPlane {
         theta_r_deg,
         brdf,
