@@ -142,6 +142,8 @@ function recompute() {
     times.curves = performance.now() - t0;
     view.curves?.free(); view.curves = curves;
   } catch { view.curves?.free(); view.curves = null; }
+  // Without a map (an error above), the drawings left are of an earlier state: dimmed.
+  $("views").classList.toggle("stale", !view.map);
   render(r);
   showTiming(times);
   // The contrast (two materials and the ranking's refinement: the slow part) after the maps

@@ -65,7 +65,7 @@ def driver(out_dir: Path):
     opts = webdriver.ChromeOptions()
     opts.binary_location = os.environ.get("CHROMIUM", "/usr/bin/chromium")
     for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage",
-                "--window-size=1500,1500", "--force-device-scale-factor=1"):
+                "--window-size=1500,1900", "--force-device-scale-factor=1"):
         opts.add_argument(arg)
     service = Service(os.environ.get("CHROMEDRIVER", "/usr/bin/chromedriver"))
     d = webdriver.Chrome(options=opts, service=service)
