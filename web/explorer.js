@@ -25,7 +25,13 @@ function tomlString(s) {
   return JSON.stringify(s); // a TOML basic string: JSON's escapes are TOML's
 }
 
+// n and k are the index's own with a library index: their fields are then disabled.
+function syncIndexFields() {
+  $("target-n").disabled = $("target-k").disabled = !!$("target-index").value;
+}
+
 function formToText() {
+  syncIndexFields();
   const v = (id) => $(id).value.trim();
   const lines = [];
   if (targetName) lines.push(`name = ${tomlString(targetName)}`);
@@ -56,6 +62,7 @@ function textToForm(text) {
   set("target-form", e.form); $("target-shadowing").checked = !!e.shadowing;
   set("target-tau", e.tau_deg); set("target-omega", e.omega_deg);
   set("target-azimuth", e.azimuth_term); set("target-rho-d", e.rho_d); set("target-rho-v", e.rho_v);
+  syncIndexFields();
 }
 
 // ---- state in the URL ----------------------------------------------------------------------
