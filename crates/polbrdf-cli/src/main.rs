@@ -12,6 +12,7 @@ mod contrast;
 mod emission;
 mod error;
 mod eval;
+mod explore;
 mod export;
 mod figures;
 mod fit;
@@ -185,6 +186,18 @@ enum Command {
     /// Write a material as a Mitsuba 3 `measured_polarized` table (.pbsdf), which the stock
     /// plugin renders (docs/model.md §20).
     Export(export::Args),
+    /// Serve the web explorer (built by scripts/build-web into web/dist) on localhost and print
+    /// its address: polar maps of the Mueller matrix, BRDF, DoLP and AoLP, in-plane curves and
+    /// the contrast against a background, computed in the browser (docs/explorer.md).
+    Explore {
+        /// The built page's folder (default: web/dist here, else beside the repository the
+        /// binary was built in).
+        #[arg(long, value_name = "DIR")]
+        dir: Option<PathBuf>,
+        /// Port on 127.0.0.1 (0: any free port).
+        #[arg(long, value_name = "PORT", default_value_t = 8737)]
+        port: u16,
+    },
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -289,6 +302,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
             spectral,
         } => check::run(&material, grid_deg, &spectral),
         Command::Materials { show } => materials::run(show.as_deref()),
+        Command::Explore { dir, port } => explore::run(dir.as_deref(), port),
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Emission(args) => emission::run(&args),

@@ -716,6 +716,8 @@ fn table_common() -> Vec<Case> {
         case("check grid 1e-300", vec![], &["check", "--material", "paint", "--grid-deg", "1e-300"], 2, &["--grid-deg", "2000000"]),
         fit_starts("fit starts u64::MAX", "18446744073709551615", 2, &["--starts", "at most 10000"]),
         case("contrast top 1e9", vec![], &["contrast", "--target", "paint", "--background", "paint", "--sun-zenith-deg", "30", "--top", "1000000000", "--min-separation-deg", "0", "--out", "{d}/out"], 2, &["--top", "at most 1000"]),
+        // Issue 38: the explorer's page not built: the missing file and the command that builds it.
+        case("explore: page not built", vec![], &["explore", "--dir", "{d}/nodist", "--port", "0"], 3, &["nodist/index.html", "not built", "scripts/build-web"]),
         case("bench count 1e10", vec![], &["bench", "--count", "10000000000"], 2, &["--count", "at most 10000000"]),
         case("bench threads 20000", vec![], &["bench", "--threads", "20000"], 2, &["--threads", "at most 1024"]),
         case("bench repeats 1e9", vec![], &["bench", "--repeats", "1000000000"], 2, &["--repeats", "at most 1000"]),

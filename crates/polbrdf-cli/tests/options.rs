@@ -185,6 +185,7 @@ const CASES: &[(&[&str], &str)] = &[
         &["check", "--material", "{}", "--grid-deg", "0"],
         "--grid-deg",
     ),
+    (&["explore", "--dir", "{}", "--port", "70000"], "--port"),
     (
         &[
             "export",

@@ -151,6 +151,7 @@ fn unregister(p: &Path) {
 }
 
 /// Removes the named temporaries of this process (files or directories).
+#[cfg_attr(not(unix), allow(dead_code))] // Called by the signal handler, which is Unix's.
 fn remove_registered() {
     let list = match TEMPS.lock() {
         Ok(t) => t.clone(),
@@ -630,6 +631,7 @@ fn stage_set(stage: &Path, dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()
 /// the resolved path of one to be created.
 #[derive(Debug, PartialEq, Eq)]
 enum FileId {
+    #[cfg_attr(not(unix), allow(dead_code))] // Unix's device and inode numbers.
     Inode(u64, u64),
     New(PathBuf),
 }

@@ -34,18 +34,25 @@
 
 #![warn(missing_docs)]
 
+#[cfg(feature = "render")]
 pub mod chart;
 pub mod colormap;
 pub mod error;
+#[cfg(feature = "render")]
 pub mod font;
+#[cfg(feature = "render")]
 pub mod polar;
+#[cfg(feature = "render")]
 mod render;
 
+#[cfg(feature = "render")]
 pub use chart::{power_of_ten, Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
 pub use colormap::Colormap;
 pub use error::{Error, Result};
 pub use plotters::style::RGBColor;
+#[cfg(feature = "render")]
 pub use polar::{
     nice_ceil, ColorScale, Disk, MarkShape, PolarFigure, PolarGrid, PolarMark, PolarPanel,
 };
+#[cfg(feature = "render")]
 pub use render::{encode_png, render_files, Files, Render};

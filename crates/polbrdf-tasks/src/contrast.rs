@@ -230,7 +230,18 @@ fn collimated_problem(
 ) -> TaskResult<(NamedMaterial, NamedMaterial, Contrast, usize)> {
     let target = material_of(request.target.as_deref(), "target", None)?;
     let background = material_of(request.background.as_deref(), "background", None)?;
-    let nodes = materials_at(&[&target, &background], spectrum)?;
+    let (problem, count) = collimated_nodes(&target, &background, light, spectrum)?;
+    Ok((target, background, problem, count))
+}
+
+/// The problem of a collimated contrast of two materials, and its number of spectral nodes.
+fn collimated_nodes(
+    target: &NamedMaterial,
+    background: &NamedMaterial,
+    light: Illumination,
+    spectrum: Option<&Spectrum>,
+) -> TaskResult<(Contrast, usize)> {
+    let nodes = materials_at(&[target, background], spectrum)?;
     let count = nodes.len();
     let problem = Contrast::spectral(
         nodes
@@ -242,7 +253,7 @@ fn collimated_problem(
             .collect(),
         light,
     );
-    Ok((target, background, problem, count))
+    Ok((problem, count))
 }
 
 /// The setup of a scene contrast: both materials, the problem, the setting and the warnings.
@@ -293,24 +304,77 @@ pub fn contrast(request: &ContrastRequest) -> TaskResult<ContrastStudy> {
         }
     };
     let grid = view_grid(request.grid_deg)?;
-    let map = problem.map(&grid);
+    Ok(study(
+        (target, background),
+        problem,
+        setting,
+        warnings,
+        &grid,
+        (request.rank, options),
+    ))
+}
+
+/// A contrast study under a collimated source of two materials already read (an adapter
+/// holding the materials' text, e.g. the web explorer, parses them with
+/// [`NamedMaterial::parse`]): as [`contrast`] with [`SourceRequest::Collimated`].
+///
+/// # Errors
+/// As [`contrast`]: the ranking, the source, the grid, the spectrum, then the materials at it.
+pub fn contrast_of(
+    target: NamedMaterial,
+    background: NamedMaterial,
+    light: &LightRequest,
+    spectral: &SpectralRequest,
+    grid_deg: (f64, f64),
+    rank: RankRequest,
+) -> TaskResult<ContrastStudy> {
+    let options = rank.options()?;
+    let light = light.illumination()?;
+    let grid = view_grid(grid_deg)?;
+    let spectrum = spectral.spectrum()?;
+    let (problem, nodes) = collimated_nodes(&target, &background, light, spectrum.as_ref())?;
+    let setting = Setting::Collimated {
+        light,
+        spectrum,
+        nodes,
+    };
+    Ok(study(
+        (target, background),
+        problem,
+        setting,
+        Vec::new(),
+        &grid,
+        (rank, options),
+    ))
+}
+
+/// The map, the ranking and the null loci of a problem set up.
+fn study(
+    (target, background): (NamedMaterial, NamedMaterial),
+    problem: Contrast,
+    setting: Setting,
+    warnings: Vec<Warning>,
+    grid: &polbrdf::ViewGrid,
+    (rank, options): (RankRequest, RankOptions),
+) -> ContrastStudy {
+    let map = problem.map(grid);
     let top = problem.rank(&map, &options);
     let nulls = match &setting {
         Setting::Scene(s) => Some(null_loci(&problem, &map, s)),
         Setting::Collimated { .. } => None,
     };
-    Ok(ContrastStudy {
+    ContrastStudy {
         target,
         background,
         setting,
         problem,
         map,
         top,
-        rank: request.rank,
+        rank,
         options,
         nulls,
         warnings,
-    })
+    }
 }
 
 /// The null locus is where S1 changes sign while S2 vanishes identically: in scenes symmetric

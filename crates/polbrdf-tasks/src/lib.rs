@@ -16,6 +16,7 @@ pub mod contrast;
 mod contrast_json;
 pub mod emission;
 mod error;
+pub mod explore;
 pub mod fit;
 pub mod hemisphere;
 pub mod lut;

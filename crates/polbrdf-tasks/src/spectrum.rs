@@ -138,6 +138,36 @@ impl NamedMaterial {
         })
     }
 
+    /// Parses the text of a material file named `file_name` (in error messages, and the stem
+    /// is the display name without a `name` key), given as the request field `field`: for an
+    /// adapter holding a material's text rather than a file (the web explorer). The messages
+    /// are those of the file reader (`polbrdf_io::parse_material`).
+    ///
+    /// # Errors
+    /// [`TaskError::Invalid`] naming `field` for malformed text; [`TaskError::Io`] when a
+    /// refractive-index file it names cannot be read.
+    pub fn parse(text: &str, file_name: &str, field: &str) -> TaskResult<Self> {
+        let spec = polbrdf_io::parse_material(text, Path::new(file_name)).map_err(|e| {
+            if e.is_data_error() {
+                TaskError::invalid(field, e.to_string())
+            } else {
+                TaskError::Io(e)
+            }
+        })?;
+        let name = spec.name.clone().unwrap_or_else(|| {
+            Path::new(file_name).file_stem().map_or_else(
+                || file_name.to_string(),
+                |s| s.to_string_lossy().into_owned(),
+            )
+        });
+        Ok(Self {
+            spec,
+            name,
+            source: file_name.to_string(),
+            field: field.to_string(),
+        })
+    }
+
     fn error(&self, e: &polbrdf::Error) -> TaskError {
         TaskError::invalid(&self.field, format!("{}: {e}", self.source))
     }

@@ -327,6 +327,8 @@ pub(super) fn transpose<const N: usize>(
         }
         return;
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = stream; // Streaming stores are x86's.
     transpose_tail(rows, out, 0);
 }
 
