@@ -18,6 +18,7 @@ pub mod emission;
 mod error;
 pub mod fit;
 pub mod hemisphere;
+pub mod limits;
 pub mod lut;
 pub mod pbsdf;
 pub mod radiance;
