@@ -38,6 +38,7 @@ the first call to change it.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping, Sequence
 from typing import NamedTuple, overload
 
@@ -54,6 +55,18 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
         "source folder python/polbrdf instead of the installed package (run from elsewhere)."
     ) from _e
 
+from .jobs import (
+    CheckReport,
+    Measurements,
+    PbsdfTable,
+    _band_emission,
+    check,
+    export_pbsdf,
+    fit_measurements,
+    fit_pbsdf,
+    read_measurements,
+    read_pbsdf,
+)
 from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
 from .tasks import (
     AlbedoTable,
@@ -70,6 +83,7 @@ __all__ = [
     "AlbedoTable",
     "Atmosphere",
     "Band",
+    "CheckReport",
     "ContrastStudy",
     "Emissivity",
     "Evaluation",
@@ -77,6 +91,8 @@ __all__ = [
     "HemisphereMap",
     "Illumination",
     "Material",
+    "Measurements",
+    "PbsdfTable",
     "Radiance",
     "Scene",
     "SceneObject",
@@ -87,17 +103,23 @@ __all__ = [
     "albedo",
     "brdf",
     "brightness_temperature",
+    "check",
     "contrast",
     "dolp",
     "emissivity",
     "evaluate",
+    "export_pbsdf",
     "fit",
+    "fit_measurements",
+    "fit_pbsdf",
     "hemisphere",
     "index",
     "mueller",
     "mueller_directions",
     "planck",
     "radiance",
+    "read_measurements",
+    "read_pbsdf",
     "stokes_aolp",
     "stokes_dolp",
     "stokes_dop",
@@ -785,6 +807,9 @@ def emissivity(
     *,
     degrees: bool = True,
     wavelength_um: ArrayLike | None = None,
+    band: str | os.PathLike[str] | None = None,
+    band_step_um: float | None = None,
+    temperature_k: float | None = None,
 ) -> Emissivity:
     """The emissivity Stokes vector of an opaque surface seen from view zenith ``theta_r``, by
     Kirchhoff's law (the core's ``analysis::emission``; dimensionless).
@@ -809,6 +834,15 @@ def emissivity(
         (``Material(index=...)``), evaluated with its index at each wavelength; a constant
         index does not depend on it. Each distinct wavelength is one batch of all its distinct
         angles.
+    band, band_step_um : str or path, float, optional
+        A band instead of ``wavelength_um``: a response file (CSV ``wavelength_um,response``)
+        and its largest quadrature step (µm): the response-weighted mean of ε over the band's
+        nodes, as ``polbrdf emission --band`` computes it (the same numbers bit for bit; the
+        view angles are taken in degrees, radians converted).
+    temperature_k : float, optional
+        With ``band``: weight the wavelengths by Planck's law at this temperature as well as by
+        the response (``polbrdf emission --temperature-k``): the emissivity of a surface at that
+        temperature, seen in the band.
 
     Returns
     -------
@@ -828,6 +862,10 @@ def emissivity(
         For a non-Material ``material`` or non-real arguments.
     """
     _check_material(material)
+    if band is not None or temperature_k is not None or band_step_um is not None:
+        return _emissivity_over_band(
+            material, theta_r, degrees, wavelength_um, band, band_step_um, temperature_k
+        )
     names = ("theta_r", "wavelength_um")
     args = (theta_r,) if wavelength_um is None else (theta_r, wavelength_um)
     shape, flat = _broadcast(names, args)
@@ -839,6 +877,39 @@ def emissivity(
         raise _located(err, shape) from None
     return Emissivity(
         e.reshape(shape + (4,)),
+        eb.reshape(shape + (4,)),
+        _scalar_or_array(es, shape),
+        _scalar_or_array(ep, shape),
+        _scalar_or_array(d, shape),
+        _scalar_or_array(r, shape),
+        _scalar_or_array(v, shape),
+    )
+
+
+def _emissivity_over_band(
+    material: Material,
+    theta_r: ArrayLike,
+    degrees: bool,
+    wavelength_um: ArrayLike | None,
+    band: str | os.PathLike[str] | None,
+    band_step_um: float | None,
+    temperature_k: float | None,
+) -> Emissivity:
+    """:func:`emissivity` over a band, through the task layer (``polbrdf emission``)."""
+    if wavelength_um is not None:
+        e = ValueError("invalid `wavelength_um`: give one wavelength or a band, not both")
+        e.argument = "wavelength_um"  # type: ignore[attr-defined]
+        raise e
+    t = _real("theta_r", theta_r).astype(np.float64)
+    shape = t.shape
+    flat = t.reshape(-1) if degrees else np.degrees(t.reshape(-1))
+    if flat.size == 0:
+        e = ValueError("invalid `theta_r`: no angle given")
+        e.argument = "theta_r"  # type: ignore[attr-defined]
+        raise e
+    e0, eb, es, ep, d, r, v = _band_emission(material, flat, temperature_k, band, band_step_um)
+    return Emissivity(
+        e0.reshape(shape + (4,)),
         eb.reshape(shape + (4,)),
         _scalar_or_array(es, shape),
         _scalar_or_array(ep, shape),

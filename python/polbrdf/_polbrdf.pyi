@@ -21,9 +21,10 @@ _Quantity: TypeAlias = Literal[
     "m20", "m21", "m22", "m23", "m30", "m31", "m32", "m33",
 ]  # fmt: skip
 _RankBy: TypeAlias = Literal["delta-dolp", "polarization-contrast"]
+_LutQuantity: TypeAlias = Literal["mueller", "brdf", "dolp", "aolp"]
 _VocabularySet: TypeAlias = Literal[
     "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key",
-    "rank_by",
+    "rank_by", "lut_quantity",
 ]
 
 DEFAULT_DOP_MAX: float
@@ -41,18 +42,26 @@ __all__ = [
     "albedo_task",
     "brdf_dolp_flat",
     "brightness_temperature_flat",
+    "check_task",
     "contrast_task",
     "derivative_step",
+    "emission_task",
     "emissivity_flat",
     "evaluate_flat",
+    "export_pbsdf_task",
     "fit_flat",
+    "fit_measurements_task",
+    "fit_pbsdf_task",
     "hemisphere_task",
     "index_flat",
+    "lut_rows",
     "mueller_directions_flat",
     "mueller_flat",
     "planck_flat",
     "radiance_flat",
     "radiance_scene",
+    "read_measurements_task",
+    "read_pbsdf_task",
     "read_scene_keys",
     "vocabulary",
 ]
@@ -344,6 +353,82 @@ def albedo_task(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The task layer's albedo (``polbrdf albedo``): theta_i_deg, albedo, surface, volume;
     an empty ``theta_i_deg`` takes the task's default angles."""
+
+def check_task(material: str | Material, grid_deg: float | None, spectral: _Spectral) -> str:
+    """The task layer's validity check (``polbrdf check --output``): its document as JSON
+    text."""
+
+def emission_task(
+    material: str | Material,
+    theta_deg: list[float],
+    temperature_k: float | None,
+    spectral: _Spectral,
+) -> tuple[
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.bool_],
+]:
+    """The task layer's emissivity (``polbrdf emission``): theta_deg, eps (n, 4), eps_b (n, 4),
+    eps_s, eps_p, dolp, reciprocity_residual, valid; an empty ``theta_deg`` takes 0, 1, …, 89."""
+
+def lut_rows(
+    material: Material,
+    wavelength_um: list[float],
+    theta_i_deg: list[float],
+    theta_r_deg: list[float],
+    dphi_deg: list[float],
+    quantities: list[_LutQuantity],
+) -> NDArray[np.float64]:
+    """The task layer's lookup-table rows of one material (``polbrdf lut``): (W·I·R·P, columns)."""
+
+def export_pbsdf_task(
+    material: str | Material,
+    path: str | PathLike[str],
+    bands_nm: list[int] | None,
+    grid: tuple[int, int, int] | None,
+) -> int:
+    """The task layer's ``.pbsdf`` export (``polbrdf export``); the bytes of the matrices."""
+
+def read_pbsdf_task(
+    path: str | PathLike[str],
+) -> tuple[
+    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], list[int], NDArray[np.float32]
+]:
+    """A ``.pbsdf`` table: phi_d, theta_d, theta_h (rad), bands (nm), M (P, D, H, bands, 4, 4)."""
+
+def fit_pbsdf_task(
+    material: str | Material,
+    path: str | PathLike[str],
+    free: list[_Parameter],
+    subsample: int | None,
+    starts: int,
+    seed: int,
+    exclude_inadmissible: bool,
+) -> str:
+    """The task layer's band fit of a ``.pbsdf`` table (``polbrdf fit``): fit.json as text."""
+
+def read_measurements_task(
+    path: str | PathLike[str],
+) -> tuple[
+    list[int],
+    list[NDArray[np.float64]],
+    list[_Quantity],
+    list[NDArray[np.float64]],
+    list[NDArray[np.float64] | None],
+    NDArray[np.float64] | None,
+]:
+    """A measurement CSV (``polbrdf fit --data``): lines, angles (rad), columns, values (NaN:
+    not measured), sigmas, wavelengths."""
+
+def fit_measurements_task(
+    material: Material, path: str | PathLike[str], free: list[_Parameter], starts: int, seed: int
+) -> FitResult:
+    """The fit of a measurement CSV as ``polbrdf fit --data`` runs it."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

@@ -237,24 +237,15 @@ def _components(quantities: Sequence[str]) -> list[tuple[str, slice]]:
 def _engine(
     material: Material, coords: Sequence[NDArray[np.float64]], layout: list[tuple[str, slice]]
 ) -> NDArray[np.float64]:
-    """One engine call (:func:`polbrdf.evaluate`, or :func:`polbrdf.mueller` for the pBRDF
-    alone; the GIL released) over the grid of
-    ``coords = (wavelength, theta_i, theta_r, dphi)``: the quantities packed along a last axis
-    of ``(W, I, R, P, C)``."""
+    """The rows of the grid ``coords = (wavelength, theta_i, theta_r, dphi)`` by the task layer
+    (``polbrdf_tasks::lut``, the rows ``polbrdf lut`` writes; the GIL released): the quantities
+    packed along a last axis of ``(W, I, R, P, C)``."""
     wl, ti, tr, dp = coords
     shape = (len(wl), len(ti), len(tr), len(dp))
-    args = (ti[None, :, None, None], 0.0, tr[None, None, :, None], dp[None, None, None, :])
-    wavelength = wl[:, None, None, None]
-    if [q for q, _ in layout] == ["mueller"]:  # the pBRDF alone: mueller's own engine call
-        return polbrdf.mueller(material, *args, wavelength_um=wavelength).reshape(shape + (16,))
-    with_mueller = layout[0][0] == "mueller"
-    e = polbrdf.evaluate(material, *args, wavelength_um=wavelength, with_mueller=with_mueller)
-    width = layout[-1][1].stop
-    out = np.empty(shape + (width,))
-    for q, s in layout:
-        v = getattr(e, q)
-        out[..., s] = v.reshape(shape + (16,)) if q == "mueller" else v[..., None]
-    return out
+    rows = _polbrdf.lut_rows(
+        material, wl.tolist(), ti.tolist(), tr.tolist(), dp.tolist(), [q for q, _ in layout]
+    )
+    return rows.reshape(shape + (layout[-1][1].stop,))
 
 
 def _block(

@@ -491,3 +491,52 @@ pub(crate) fn _fit_result_from_state(
         material: m.inner.clone(),
     })
 }
+
+/// Fits the measurement CSV `path` as `polbrdf fit --data path` does: the file read by
+/// `polbrdf-io`'s reader, the measurements assembled by the task layer
+/// (`polbrdf_tasks::fit::measurements`, in file order) and fitted by `polbrdf_fit::fit` with the
+/// same options, so that the result is the CLI's `fit.json`, bit for bit.
+#[pyfunction]
+#[pyo3(signature = (material, path, free, starts, seed))]
+pub(crate) fn fit_measurements_task(
+    py: Python<'_>,
+    material: &PyMaterial,
+    path: std::path::PathBuf,
+    free: Vec<String>,
+    starts: usize,
+    seed: u64,
+) -> PyResult<PyFitResult> {
+    use polbrdf_fit::Param;
+    let fit_err = |e: polbrdf_fit::FitError| PyValueError::new_err(e.to_string());
+    // Options before data (as the CLI: the free parameters, the starts, then the file).
+    let free: Vec<Param> = Param::parse_list(&free.join(",")).map_err(fit_err)?;
+    if starts > polbrdf_tasks::limits::STARTS {
+        let e = polbrdf_tasks::TaskError::Limit {
+            field: "starts".into(),
+            what: format!(" = {starts}"),
+            max: polbrdf_tasks::limits::STARTS,
+        };
+        return Err(crate::tasks::task_err(py, &e));
+    }
+    let spec = material.inner.spec().clone();
+    let opts = polbrdf_fit::FitOptions {
+        extra_starts: starts,
+        seed,
+        ..polbrdf_fit::FitOptions::default()
+    };
+    let (result, first_wavelength) = py
+        .detach(|| {
+            let table = polbrdf_io::read_measurements_csv(&path)?;
+            let data = polbrdf_tasks::fit::measurements(&table)?;
+            let wl = data.first().and_then(|m| m.wavelength_um);
+            let result = polbrdf_fit::fit(&spec, &free, &data, &opts)?;
+            Ok::<_, polbrdf_tasks::TaskError>((result, wl))
+        })
+        .map_err(|e| crate::tasks::task_err(py, &e))?;
+    let material = match (result.spec.is_spectral(), first_wavelength) {
+        (true, Some(w)) => result.spec.build_at(w),
+        _ => result.spec.build(),
+    }
+    .map_err(|e| core_err(py, &e))?;
+    Ok(PyFitResult { result, material })
+}

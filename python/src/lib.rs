@@ -20,7 +20,8 @@
 //! One module per concern: `errors` (exceptions), `material` (the `Material` class),
 //! `buffers` (flat arrays in, output arrays out), `evaluation` (the pBRDF kernels),
 //! `thermal` (Planck, emissivity), `scene` (the observed radiance, scene files), `fit`
-//! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `vocabulary`
+//! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `jobs` (check, band
+//! emissivity, lookup-table rows, `.pbsdf` tables, measurement files), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
 //! sources); this file only registers what they define.
 
@@ -28,6 +29,7 @@ mod buffers;
 mod errors;
 mod evaluation;
 mod fit;
+mod jobs;
 mod material;
 mod scene;
 mod tasks;
@@ -58,6 +60,14 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tasks::contrast_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::hemisphere_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::albedo_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::check_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::emission_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::lut_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::export_pbsdf_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::read_pbsdf_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::fit_pbsdf_task, m)?)?;
+    m.add_function(wrap_pyfunction!(jobs::read_measurements_task, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::fit_measurements_task, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,

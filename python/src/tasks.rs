@@ -31,6 +31,14 @@ pub(crate) fn task_err(py: Python<'_>, e: &TaskError) -> PyErr {
             let _ = err.value(py).setattr("argument", field.as_str());
             err
         }
+        TaskError::Limit { field, what, max } => {
+            let err = PyValueError::new_err(format!(
+                "invalid `{field}`{what}: at most {max} (the limit of this argument; see the \
+                 README's Reliability section)"
+            ));
+            let _ = err.value(py).setattr("argument", field.as_str());
+            err
+        }
         TaskError::Io(e) => io_err(e),
         TaskError::Model(e) => core_err(py, e),
         other => PyValueError::new_err(other.to_string()),
@@ -50,7 +58,7 @@ fn table<'py>(py: Python<'py>, rows: Vec<Vec<f64>>, width: usize) -> Bound<'py, 
 /// `(sun_zenith_deg, sun_azimuth_deg, stokes)` and `(wavelength_um, band file, band_step_um)`.
 /// An azimuth of `None` takes the sun's default ([`Sun::DEFAULT_AZIMUTH`], as the CLI's).
 type Light = (f64, Option<f64>, Option<[f64; 4]>);
-type Spectral = (Option<f64>, Option<PathBuf>, Option<f64>);
+pub(crate) type Spectral = (Option<f64>, Option<PathBuf>, Option<f64>);
 
 fn light_request((zenith, azimuth, stokes): Light) -> LightRequest {
     LightRequest {
@@ -60,7 +68,7 @@ fn light_request((zenith, azimuth, stokes): Light) -> LightRequest {
     }
 }
 
-fn spectral_request((wavelength_um, band, band_step_um): Spectral) -> SpectralRequest {
+pub(crate) fn spectral_request((wavelength_um, band, band_step_um): Spectral) -> SpectralRequest {
     SpectralRequest {
         wavelength_um,
         band,

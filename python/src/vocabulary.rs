@@ -17,7 +17,8 @@ pub(crate) const LAYOUTS: [&str; 2] = ["interleaved", "planar"];
 /// `{set: names}` of every closed set of names the module accepts: `form`, `azimuth_term`
 /// (material keys), `precision`, `layout`, `sky` (the scene files' sky models), `quantity`
 /// (what a fit takes as measured), `parameter` (what a fit frees), `scene_key` (every key and
-/// table of a scene file, dotted), `rank_by` (the scores of a contrast's ranking).
+/// table of a scene file, dotted), `rank_by` (the scores of a contrast's ranking),
+/// `lut_quantity` (the quantities of a lookup table).
 #[pyfunction]
 pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
     let names = |it: &mut dyn Iterator<Item = &'static str>| it.map(String::from).collect();
@@ -42,6 +43,10 @@ pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
         (
             "rank_by",
             names(&mut Ranking::ALL.iter().map(|r| r.as_str())),
+        ),
+        (
+            "lut_quantity",
+            names(&mut polbrdf_io::lut::Quantity::ALL.iter().map(|(n, _)| *n)),
         ),
     ])
 }

@@ -28,6 +28,7 @@ ALIASES = {
     "_Parameter": "parameter",
     "_Quantity": "quantity",
     "_RankBy": "rank_by",
+    "_LutQuantity": "lut_quantity",
 }
 
 

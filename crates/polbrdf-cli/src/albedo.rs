@@ -36,12 +36,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         let inputs = [std::path::Path::new(&args.material)];
         polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
     }
-    let count = if args.theta_i_deg.is_empty() {
-        18
-    } else {
-        args.theta_i_deg.len()
-    };
-    crate::limits::at_most("--theta-i-deg (count)", count, crate::limits::ANGLES)?;
     let table = albedo(&AlbedoRequest {
         material: args.material.clone(),
         theta_i_deg: args.theta_i_deg.clone(),

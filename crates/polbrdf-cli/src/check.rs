@@ -4,25 +4,26 @@ use crate::error::CliError;
 use crate::spectrum::SpectralArgs;
 use polbrdf_tasks::check::{check, CheckRequest};
 use polbrdf_tasks::spectrum::describe;
+use std::path::Path;
 
 /// Runs `polbrdf check`; exit code 6 when a check fails. Over a band, every check runs at each
-/// of the band's spectral nodes and the worst one is reported.
-pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(), CliError> {
+/// of the band's spectral nodes and the worst one is reported; `--output` holds them all.
+pub fn run(
+    material: &str,
+    grid_deg: f64,
+    output: Option<&Path>,
+    spectral: &SpectralArgs,
+) -> Result<(), CliError> {
     let request = CheckRequest {
         material: material.to_string(),
         grid_deg,
         spectral: spectral.request(),
     };
-    // The grid's size (physical_validity's loops), bounded before it is allocated.
-    let max = crate::limits::CHECK_GEOMETRIES;
-    if grid_deg.is_finite() && grid_deg > 0.0 && request.geometries().is_none_or(|n| n > max) {
-        return Err(CliError::Usage(format!(
-            "--grid-deg = {grid_deg:e}: the grid would have more than {max} geometries (the \
-             limit of this option, about 1 GB; see the README's Reliability section): give a \
-             step of at least 0.9°"
-        )));
-    }
     let outcome = check(&request)?;
+    if let Some(path) = output {
+        let json = serde_json::to_string_pretty(&outcome.to_json()).expect("JSON of finite values");
+        polbrdf_io::write_atomic(path, (json + "\n").as_bytes())?;
+    }
     let reports = &outcome.reports;
     let (l_real, r_real) = outcome.worst_realizability();
     let (l_energy, r_energy) = outcome.worst_energy();

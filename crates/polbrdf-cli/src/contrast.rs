@@ -77,7 +77,6 @@ impl Args {
     /// The request: options parsed (and limited), the rest validated by the task.
     fn request(&self) -> Result<ContrastRequest, CliError> {
         let by: Ranking = self.rank_by.parse().map_err(CliError::Invalid)?;
-        crate::limits::at_most("--top", self.top, crate::limits::TOP)?;
         let source = match &self.scene {
             Some(path) => SourceRequest::Scene(path.clone()),
             None => SourceRequest::Collimated {
@@ -89,7 +88,7 @@ impl Args {
             target: self.target.clone(),
             background: self.background.clone(),
             source,
-            grid_deg: self.view.grid_deg()?,
+            grid_deg: self.view.grid_deg(),
             rank: RankRequest {
                 by,
                 top: self.top,

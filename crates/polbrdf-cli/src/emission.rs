@@ -43,12 +43,6 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         let inputs = [std::path::Path::new(&args.material)];
         polbrdf_io::check_distinct(&inputs, &[out.as_path()])?;
     }
-    let count = if args.theta_deg.is_empty() {
-        90
-    } else {
-        args.theta_deg.len()
-    };
-    crate::limits::at_most("--theta-deg (count)", count, crate::limits::ANGLES)?;
     let table = emission(&EmissionRequest {
         material: args.material.clone(),
         theta_deg: args.theta_deg.clone(),

@@ -146,6 +146,11 @@ impl From<polbrdf_tasks::TaskError> for CliError {
             TaskError::Usage { field, message } => {
                 CliError::Usage(format!("{} {}", option_of(&field), with_options(&message)))
             }
+            TaskError::Limit { field, what, max } => CliError::Usage(format!(
+                "{}{what}: at most {max} (the limit of this option; see the README's \
+                 Reliability section)",
+                option_of(&field)
+            )),
             other => CliError::Invalid(other.to_string()),
         }
     }

@@ -6,9 +6,10 @@ use crate::error::CliError;
 use polbrdf_tasks::pbsdf::{ExportRequest, MAX_EXPORT_BYTES};
 use std::path::PathBuf;
 
-/// The KAIST wavelengths (nm), the only band count the stock plugin reads.
+/// The task layer's default bands ([`polbrdf_tasks::pbsdf::DEFAULT_BANDS_NM`]) as the option's
+/// text (a unit test holds them equal).
 pub const DEFAULT_BANDS: &str = "450,500,550,600,650";
-/// The default grid: φ_d 10°, θ_d 2°, θ_h 1° (about 50 MB).
+/// The task layer's default grid ([`polbrdf_tasks::pbsdf::DEFAULT_GRID`]) as the option's text.
 pub const DEFAULT_GRID: &str = "37,46,91";
 
 /// `polbrdf export` arguments.
@@ -85,7 +86,12 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     }
     req.validate()?;
     let spec = polbrdf_io::load_material(&args.material)?;
-    let bytes = polbrdf_tasks::pbsdf::export(&spec, &req, &args.out)?;
+    let bar = crate::progress::Progress::new(p as u64, "export: φ_d slabs");
+    let bytes =
+        polbrdf_tasks::pbsdf::export_with_progress(&spec, &req, &args.out, &mut |done, total| {
+            bar.set(done as u64, total as u64, None);
+        })?;
+    drop(bar);
     crate::note!(
         "polbrdf export: {} ({p}×{d}×{h} cells × {} bands, {:.1} MB)",
         args.out.display(),
@@ -93,4 +99,19 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         bytes as f64 / 1e6
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_are_the_task_layers() {
+        let bands = parse_bands(DEFAULT_BANDS).unwrap();
+        assert_eq!(bands, polbrdf_tasks::pbsdf::DEFAULT_BANDS_NM);
+        assert_eq!(
+            parse_grid(DEFAULT_GRID).unwrap(),
+            polbrdf_tasks::pbsdf::DEFAULT_GRID
+        );
+    }
 }

@@ -1,19 +1,14 @@
-//! Every size a user can type on the command line, bounded before anything is allocated
-//! (issue 18; the README's Reliability section lists them). A value over its limit is a usage
-//! error naming the option and the limit (exit code 2).
+//! The sizes of the commands that only the command line has (`bench`, `spectrum`) and of its
+//! own view grids, bounded before anything is allocated (issue 18; the README's Reliability
+//! section lists them). The limits of the jobs (`check`'s grid, a contrast's `top`, the angles
+//! of `albedo`, `emission` and `radiance`, a fit's starts) live in the task layer
+//! (`polbrdf_tasks::limits`), so Python is bounded the same way. A value over its limit is a
+//! usage error naming the option and the limit (exit code 2).
 
 use crate::error::CliError;
 
-/// `check --grid-deg`: geometries of the validity grid (θi × θr × Δφ). Each costs about 400
-/// bytes (the geometry, its reciprocal and two Mueller matrices): 2·10⁶ is under 1 GB, a
-/// zenith step of about 0.9°.
-pub const CHECK_GEOMETRIES: usize = 2_000_000;
-
-/// `fit --starts` (and Python's `fit(starts=…)`, through `polbrdf_fit::MAX_EXTRA_STARTS`).
-pub const STARTS: usize = polbrdf_fit::MAX_EXTRA_STARTS;
-
-/// `contrast --top`: best directions listed (each refined by brute force).
-pub const TOP: usize = 1000;
+/// `fit --starts`, the task layer's.
+pub use polbrdf_tasks::limits::STARTS;
 
 /// `bench --count`: random geometries (about 250 bytes each with the results: 2.5 GB).
 pub const BENCH_COUNT: usize = 10_000_000;
@@ -28,9 +23,9 @@ pub const THREADS: usize = 1024;
 /// `spectrum --points`: wavelengths of the sweep.
 pub const SPECTRUM_POINTS: usize = 1_000_000;
 
-/// `radiance --theta-deg × --phi-deg`, `emission --theta-deg`, `albedo --theta-i-deg`: view
-/// directions or angles given on the command line.
-pub const ANGLES: usize = 1_000_000;
+/// `radiance --theta-deg × --phi-deg`: view directions of the grid, the task layer's bound
+/// of a request's angles.
+pub use polbrdf_tasks::limits::ANGLES;
 
 /// `value` of `option` at most `max`.
 pub fn at_most(option: &str, value: usize, max: usize) -> Result<(), CliError> {
@@ -61,10 +56,10 @@ mod tests {
 
     #[test]
     fn limits_refuse_above_and_accept_at_the_bound() {
-        assert!(at_most("--top", TOP, TOP).is_ok());
-        let e = at_most("--top", TOP + 1, TOP).unwrap_err();
+        assert!(at_most("--repeats", BENCH_REPEATS, BENCH_REPEATS).is_ok());
+        let e = at_most("--repeats", BENCH_REPEATS + 1, BENCH_REPEATS).unwrap_err();
         assert_eq!(e.exit_code(), 2);
-        assert!(e.to_string().contains("--top = 1001: at most 1000"));
+        assert!(e.to_string().contains("--repeats = 1001: at most 1000"));
         assert!(product_at_most("x", usize::MAX, 2, ANGLES).is_err());
         assert_eq!(product_at_most("x", 1000, 1000, ANGLES).unwrap(), ANGLES);
     }

@@ -9,5 +9,10 @@ use std::path::Path;
 /// Runs `polbrdf lut --config FILE --out DIR`.
 pub fn run(config: &Path, out: &Path) -> Result<(), CliError> {
     let cfg = polbrdf_io::lut::read_lut_config(config)?;
-    Ok(polbrdf_tasks::lut::write_lut(&cfg, out)?)
+    let bar = crate::progress::Progress::new(cfg.rows(), "lut: rows");
+    Ok(polbrdf_tasks::lut::write_lut_with_progress(
+        &cfg,
+        out,
+        &mut |done, total| bar.set(done, total, None),
+    )?)
 }

@@ -8,6 +8,7 @@ use std::path::PathBuf;
 mod albedo;
 mod bench;
 mod check;
+mod completions;
 mod contrast;
 mod emission;
 mod error;
@@ -22,6 +23,7 @@ mod map;
 mod materials;
 mod measured;
 mod output;
+mod progress;
 mod radiance;
 mod reproduce;
 mod residuals;
@@ -178,8 +180,12 @@ enum Command {
         #[arg(long, value_name = "FILE.toml|PRESET")]
         material: String,
         /// Zenith step of the grid in degrees (the relative azimuth uses twice this step).
-        #[arg(long, value_name = "DEG", default_value_t = 5.0)]
+        #[arg(long, value_name = "DEG", default_value_t = polbrdf_tasks::check::DEFAULT_GRID_DEG)]
         grid_deg: f64,
+        /// Also write every check at every spectral node as JSON (written atomically, also
+        /// when a check fails): the document of Python's `polbrdf.check`.
+        #[arg(long, value_name = "check.json")]
+        output: Option<PathBuf>,
         #[command(flatten)]
         spectral: spectrum::SpectralArgs,
     },
@@ -203,6 +209,13 @@ enum Command {
         /// Print one preset as a material file (TOML) instead of the list.
         #[arg(long, value_name = "PRESET")]
         show: Option<String>,
+    },
+    /// Print the shell completion script of `polbrdf` to standard output (e.g. `polbrdf
+    /// completions bash > ~/.local/share/bash-completion/completions/polbrdf`).
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
     },
 }
 
@@ -299,10 +312,12 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Check {
             material,
             grid_deg,
+            output,
             spectral,
-        } => check::run(&material, grid_deg, &spectral),
+        } => check::run(&material, grid_deg, output.as_deref(), &spectral),
         Command::Materials { show } => materials::run(show.as_deref()),
         Command::Explore { dir, port } => explore::run(dir.as_deref(), port),
+        Command::Completions { shell } => completions::run(shell, &mut Cli::command()),
         Command::Contrast(args) => contrast::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Emission(args) => emission::run(&args),
@@ -317,6 +332,25 @@ fn run(cli: Cli) -> Result<(), CliError> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn completions_cover_every_command_in_every_shell() {
+        use clap::ValueEnum;
+        let names: Vec<String> = Cli::command()
+            .get_subcommands()
+            .map(|c| c.get_name().to_string())
+            .collect();
+        assert!(names.contains(&"completions".to_string()));
+        for shell in clap_complete::Shell::value_variants() {
+            let mut script = Vec::new();
+            clap_complete::generate(*shell, &mut Cli::command(), "polbrdf", &mut script);
+            let script = String::from_utf8(script).unwrap();
+            for name in &names {
+                assert!(script.contains(name.as_str()), "{shell}: {name} missing");
+            }
+        }
+    }
+
     use super::*;
     use output::{Role, PATH_OPTIONS};
     use std::path::Path;
@@ -447,6 +481,7 @@ mod tests {
             ("spectrum", "out") => &["spectrum", "--material", "{m}", "--out", "{X}"],
             ("lut", "out") => &["lut", "--config", "{m}", "--out", "{X}"],
             ("export", "out") => &["export", "--material", "{m}", "--out", "{X}"],
+            ("check", "output") => &["check", "--material", "{m}", "--output", "{X}"],
             _ => return None,
         };
         Some(v.to_vec())

@@ -32,7 +32,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let request = HemisphereRequest {
         material: args.material.clone(),
         light: args.view.light()?,
-        grid_deg: args.view.grid_deg()?,
+        grid_deg: args.view.grid_deg(),
         spectral: args.view.spectral.request(),
     };
     let map = hemisphere(&request)?;

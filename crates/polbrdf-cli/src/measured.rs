@@ -7,7 +7,7 @@ use crate::fit::Args;
 use crate::output::write_output;
 use polbrdf_fit::{FitOptions, Param};
 use polbrdf_io::PbsdfTable;
-use polbrdf_tasks::pbsdf::{document, fit_band, plan, BandFit};
+use polbrdf_tasks::pbsdf::{fit_table, plan, BandFit};
 use std::path::{Path, PathBuf};
 
 /// The residual plot of the band at `nm`: `P_<nm>nm.<ext>` next to `--plot P`.
@@ -104,10 +104,13 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
         table.wavelengths_nm.len()
     );
     let exclude = args.exclude_inadmissible;
-    let mut bands = Vec::new();
     let mut failed = Vec::new();
-    for b in 0..table.wavelengths_nm.len() {
-        let fitted = fit_band(&mut table, b, &base, &free, s, exclude, &opts)?;
+    let bands = table.wavelengths_nm.len() as u64;
+    let bar = crate::progress::Progress::new(bands, "fit: bands");
+    let mut done = 0;
+    let doc = fit_table(&mut table, &base, &free, s, exclude, &opts, |fitted| {
+        done += 1;
+        bar.set(done, bands, None);
         let nm = fitted.wavelength_nm;
         match &fitted.result {
             Ok(r) => {
@@ -120,10 +123,10 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
             }
             Err(e) => failed.push(format!("{nm} nm: {e}")),
         }
-        crate::note!("{}", band_line(&fitted, exclude));
-        bands.push(fitted.to_json(args.data, exclude));
-    }
-    let doc = document(bands, &free, args.data, s);
+        crate::note!("{}", band_line(fitted, exclude));
+        Ok::<(), CliError>(())
+    })?;
+    drop(bar);
     let json = serde_json::to_string_pretty(&doc).expect("JSON of finite and null values");
     write_output(args.output, (json + "\n").as_bytes())?;
     if failed.is_empty() {

@@ -101,6 +101,7 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("lut", "out", Role::Dir),
     ("check", "material", Role::Input),
     ("check", "band", Role::Input),
+    ("check", "output", Role::File),
     ("export", "material", Role::Input),
     ("export", "out", Role::File),
 ];

@@ -3,7 +3,7 @@
 
 use crate::error::CliError;
 use crate::spectrum::SpectralArgs;
-use polbrdf_tasks::hemisphere::LightRequest;
+use polbrdf_tasks::hemisphere::{LightRequest, DEFAULT_GRID_DEG};
 
 /// Illumination and viewing grid, shared by `map` and `contrast`.
 #[derive(clap::Args, Debug)]
@@ -25,10 +25,10 @@ pub struct ViewArgs {
     #[arg(
         long,
         value_name = "DTHETA[,DPHI]",
-        default_value = "1,2",
+        default_value_t = GridDeg(DEFAULT_GRID_DEG),
         allow_hyphen_values = true
     )]
-    pub grid_deg: String,
+    pub grid_deg: GridDeg,
     /// Input Stokes vector `S0,S1,S2,S3` (psps basis of the incident beam; normalized to
     /// S0 = 1). Default: unpolarized, 1,0,0,0.
     #[arg(long, value_name = "S0,S1,S2,S3", allow_hyphen_values = true)]
@@ -47,15 +47,34 @@ impl ViewArgs {
         })
     }
 
-    /// `--grid-deg`: one or two steps in degrees.
-    pub fn grid_deg(&self) -> Result<(f64, f64), CliError> {
-        let text = &self.grid_deg;
-        match numbers(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
-            [a] => Ok((a, a)),
-            [a, b] => Ok((a, b)),
-            _ => Err(CliError::Invalid(format!(
-                "--grid-deg {text:?}: expected DTHETA or DTHETA,DPHI in degrees"
-            ))),
+    /// `--grid-deg`: the steps in degrees (validated by the task).
+    pub fn grid_deg(&self) -> (f64, f64) {
+        self.grid_deg.0
+    }
+}
+
+/// `--grid-deg`: `DTHETA[,DPHI]` in degrees. Its default is the task layer's
+/// ([`DEFAULT_GRID_DEG`]), shown in the help through [`std::fmt::Display`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GridDeg(pub (f64, f64));
+
+impl std::fmt::Display for GridDeg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{},{}", self.0 .0, self.0 .1)
+    }
+}
+
+impl std::str::FromStr for GridDeg {
+    type Err = String;
+
+    /// One step for both angles or two; a malformed value is clap's usage error (exit 2).
+    fn from_str(text: &str) -> Result<Self, String> {
+        let what = "DTHETA or DTHETA,DPHI in degrees";
+        let v = numbers(text, "--grid-deg", what).map_err(|e| e.to_string())?;
+        match v[..] {
+            [a] => Ok(GridDeg((a, a))),
+            [a, b] => Ok(GridDeg((a, b))),
+            _ => Err(format!("--grid-deg {text:?}: expected {what}")),
         }
     }
 }

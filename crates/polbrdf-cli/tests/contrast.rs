@@ -379,8 +379,6 @@ fn bad_inputs_exit_3_and_write_nothing() {
         (vec!["--sun-zenith-deg", "NaN"], "sun_zenith_deg"),
         (vec!["--grid-deg", "0"], "grid_deg"),
         (vec!["--grid-deg", "-1"], "grid_deg"),
-        (vec!["--grid-deg", "abc"], "--grid-deg"),
-        (vec!["--grid-deg", "1,2,3"], "--grid-deg"),
         (vec!["--grid-deg", "0.01"], "grid_deg"),
         (vec!["--stokes", "1,0.9,0.9,0"], "stokes"),
         (vec!["--stokes", "1,0"], "--stokes"),
@@ -417,6 +415,35 @@ fn bad_inputs_exit_3_and_write_nothing() {
         assert_eq!(o.status.code(), Some(3), "{extra:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(needle), "{extra:?}: {}", stderr(&o));
         assert!(!out.exists(), "{extra:?}: output directory created");
+    }
+}
+
+#[test]
+fn a_malformed_grid_is_a_usage_error_and_writes_nothing() {
+    // A value clap cannot parse is a usage error (exit 2), like every malformed option value.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for grid in ["abc", "1,2,3", ""] {
+        let o = polbrdf(&[
+            "contrast",
+            "--target",
+            "paint",
+            "--background",
+            "paint",
+            "--sun-zenith-deg",
+            "30",
+            "--grid-deg",
+            grid,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{grid:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("--grid-deg"),
+            "{grid:?}: {}",
+            stderr(&o)
+        );
+        assert!(!out.exists(), "{grid:?}: output directory created");
     }
 }
 

@@ -94,14 +94,6 @@ fn map_refuses_bad_input_with_exit_3() {
         vec!["--material", "unobtainium", "--sun-zenith-deg", "30"],
         vec!["--material", "paint", "--sun-zenith-deg", "-10"],
         vec!["--material", "paint", "--sun-zenith-deg", "90"],
-        vec![
-            "--material",
-            "paint",
-            "--sun-zenith-deg",
-            "30",
-            "--grid-deg",
-            "x",
-        ],
     ] {
         let mut a = vec!["map"];
         a.extend(&args);
@@ -110,4 +102,19 @@ fn map_refuses_bad_input_with_exit_3() {
         assert_eq!(o.status.code(), Some(3), "{args:?}: {}", stderr(&o));
         assert!(!out.exists());
     }
+    // A malformed option value is a usage error (exit 2), and writes nothing either.
+    let o = polbrdf(&[
+        "map",
+        "--material",
+        "paint",
+        "--sun-zenith-deg",
+        "30",
+        "--grid-deg",
+        "x",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--grid-deg"), "{}", stderr(&o));
+    assert!(!out.exists());
 }

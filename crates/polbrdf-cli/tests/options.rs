@@ -216,3 +216,19 @@ fn an_invalid_option_is_reported_before_any_input_is_read() {
         assert!(!e.contains("nonexistent-polbrdf-input"), "{args:?}: {e}");
     }
 }
+
+#[test]
+fn completions_print_a_script_and_refuse_an_unknown_shell() {
+    let o = polbrdf(&["completions", "bash"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let script = String::from_utf8(o.stdout).unwrap();
+    assert!(script.starts_with("_polbrdf()"), "{script}");
+    assert!(script.contains("--grid-deg"));
+    let o = polbrdf(&["completions", "tcsh"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("possible values: bash"),
+        "{}",
+        stderr(&o)
+    );
+}

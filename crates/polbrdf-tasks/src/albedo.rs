@@ -90,7 +90,8 @@ impl AlbedoTable {
 /// at the band's nodes (each through the engine, in parallel).
 ///
 /// # Errors
-/// [`TaskError::Invalid`] naming `theta_i_deg`; as [`SpectralRequest::spectrum`] and
+/// [`TaskError::Invalid`] naming `theta_i_deg` ([`TaskError::Limit`] over
+/// [`crate::limits::ANGLES`] angles); as [`SpectralRequest::spectrum`] and
 /// [`NamedMaterial::load`].
 pub fn albedo(request: &AlbedoRequest) -> TaskResult<AlbedoTable> {
     let angles: Vec<f64> = if request.theta_i_deg.is_empty() {
@@ -98,6 +99,7 @@ pub fn albedo(request: &AlbedoRequest) -> TaskResult<AlbedoTable> {
     } else {
         request.theta_i_deg.clone()
     };
+    crate::limits::count_at_most("theta_i_deg", angles.len(), crate::limits::ANGLES)?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
         return Err(TaskError::invalid(
             "theta_i_deg",

@@ -48,11 +48,13 @@ impl RankRequest {
     /// The validated ranking options.
     ///
     /// # Errors
-    /// [`TaskError::Invalid`] naming `top`, `min_separation_deg` or `max_zenith_deg`.
+    /// [`TaskError::Invalid`] naming `top`, `min_separation_deg` or `max_zenith_deg`;
+    /// [`TaskError::Limit`] for a `top` over [`crate::limits::TOP`].
     pub fn options(&self) -> TaskResult<RankOptions> {
         if self.top == 0 {
             return Err(TaskError::invalid("top", "must be at least 1"));
         }
+        crate::limits::at_most("top", self.top, crate::limits::TOP)?;
         let sep = self.min_separation_deg;
         if !(sep.is_finite() && (0.0..=180.0).contains(&sep)) {
             return Err(TaskError::invalid(

@@ -81,6 +81,7 @@ fn angles(theta_deg: &[f64]) -> TaskResult<Vec<f64>> {
     } else {
         theta_deg.to_vec()
     };
+    crate::limits::count_at_most("theta_deg", angles.len(), crate::limits::ANGLES)?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
         return Err(TaskError::invalid(
             "theta_deg",
@@ -116,12 +117,33 @@ pub fn band_weights(nodes: &[(f64, Material)], temperature_k: Option<f64>) -> Ta
 
 /// The emissivity Stokes vector at each view angle (route A, with route B for the
 /// reciprocity residual), weighted over the spectrum's nodes; values outside [0, 1] are
-/// reported (`valid = false`), never clipped.
+/// reported (`valid = false`), never clipped. The request is checked before the material is
+/// read (options before data).
 ///
 /// # Errors
 /// [`TaskError::Invalid`] naming `theta_deg`, `temperature_k` or `material` (the `paper`
 /// form has no emissivity: its integrals diverge); as [`SpectralRequest::spectrum`].
 pub fn emission(request: &EmissionRequest) -> TaskResult<EmissionTable> {
+    let (angles, spectrum) = validated(request)?;
+    let material = NamedMaterial::load(&request.material, "material")?;
+    compute(material, &angles, request.temperature_k, spectrum)
+}
+
+/// [`emission`] of a material already built (the Python `Material`), named `material` in
+/// messages; `request.material` is only its display source.
+///
+/// # Errors
+/// As [`emission`].
+pub fn emission_of(
+    material: NamedMaterial,
+    request: &EmissionRequest,
+) -> TaskResult<EmissionTable> {
+    let (angles, spectrum) = validated(request)?;
+    compute(material, &angles, request.temperature_k, spectrum)
+}
+
+/// The request's angles (with their default) and spectrum, every number checked.
+fn validated(request: &EmissionRequest) -> TaskResult<(Vec<f64>, Option<Spectrum>)> {
     let angles = angles(&request.theta_deg)?;
     if let Some(t) = request.temperature_k {
         if request.spectral.band.is_none() {
@@ -137,15 +159,23 @@ pub fn emission(request: &EmissionRequest) -> TaskResult<EmissionTable> {
             ));
         }
     }
-    let spectrum = request.spectral.spectrum()?;
-    let material = NamedMaterial::load(&request.material, "material")?;
+    Ok((angles, request.spectral.spectrum()?))
+}
+
+/// The table of `material` at `angles` (degrees, checked) over `spectrum`.
+fn compute(
+    material: NamedMaterial,
+    angles: &[f64],
+    temperature_k: Option<f64>,
+    spectrum: Option<Spectrum>,
+) -> TaskResult<EmissionTable> {
     let nodes = material_at(&material, spectrum.as_ref())?;
-    let weights = band_weights(&nodes, request.temperature_k)?;
+    let weights = band_weights(&nodes, temperature_k)?;
     let thetas: Vec<f64> = angles.iter().map(|t| t.to_radians()).collect();
     let zero = Stokes([0.0; 4]);
     let mut rows: Vec<EmissionRow> = thetas
         .iter()
-        .zip(&angles)
+        .zip(angles)
         .map(|(&t, &d)| EmissionRow {
             theta_deg: d,
             emissivity: Emissivity {

@@ -34,6 +34,17 @@ pub enum TaskError {
         /// What is missing, and what would be accepted.
         message: String,
     },
+    /// A size over its limit (`crate::limits`): the CLI's usage error naming the option, a
+    /// Python `ValueError` naming the keyword.
+    #[error("{field}{what}: at most {max}")]
+    Limit {
+        /// The request field.
+        field: String,
+        /// The value or count asked for, as a suffix of the field (` = 1001`, `: 5 values`).
+        what: String,
+        /// The limit.
+        max: usize,
+    },
 }
 
 impl TaskError {

@@ -19,6 +19,7 @@ mod error;
 pub mod explore;
 pub mod fit;
 pub mod hemisphere;
+pub mod limits;
 pub mod lut;
 pub mod pbsdf;
 pub mod radiance;

@@ -12,7 +12,7 @@
 
 use crate::{TaskError, TaskResult};
 use polbrdf::model::KeyValue;
-use polbrdf::{Engine, GeometryBatch, MaterialSpec};
+use polbrdf::{Engine, GeometryBatch, Material, MaterialSpec};
 use polbrdf_io::lut::{LutConfig, Quantity};
 use polbrdf_io::npy::NpyWriter;
 use serde_json::{json, Map, Value};
@@ -106,10 +106,104 @@ pub fn sidecar(cfg: &LutConfig, columns: &[String]) -> TaskResult<Value> {
     }))
 }
 
-/// Streams the rows: per material and wavelength, blocks of [`BLOCK`] geometries, each one
-/// engine call (with the index at the wavelength of every element, as the Python package
-/// calls it, so that the values are the same bit for bit).
-fn write_table(cfg: &LutConfig, cols: &[String], path: &Path) -> TaskResult<()> {
+/// The in-plane geometry axes of a table, degrees: `θi`, `θr`, `Δφ = φr − φi`.
+#[derive(Debug, Clone, Copy)]
+pub struct Axes<'a> {
+    /// Zenith of the direction to the source.
+    pub theta_i_deg: &'a [f64],
+    /// Zenith of the direction to the detector.
+    pub theta_r_deg: &'a [f64],
+    /// Azimuth difference.
+    pub dphi_deg: &'a [f64],
+}
+
+impl Axes<'_> {
+    /// Geometries of the grid.
+    pub fn len(&self) -> usize {
+        self.theta_i_deg.len() * self.theta_r_deg.len() * self.dphi_deg.len()
+    }
+
+    /// Whether the grid is empty.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// The rows of one material (`polbrdf lut`'s table for that material, and Python's
+/// `polbrdf.xarray.lut` block): per wavelength, the geometries of `axes` in C order
+/// (θi, θr, Δφ), in blocks of at most [`BLOCK`] rows handed to `sink` (row-major, the columns
+/// of [`columns`]). Each block is one engine call with the index at the wavelength of every
+/// element, so the CLI and Python give the same values bit for bit.
+///
+/// # Errors
+/// [`TaskError::Model`] for a geometry or wavelength the engine refuses; what `sink` returns.
+pub fn material_rows(
+    material: &Material,
+    wavelength_um: &[f64],
+    axes: Axes<'_>,
+    quantities: &[Quantity],
+    mut sink: impl FnMut(&[f64]) -> TaskResult<()>,
+) -> TaskResult<()> {
+    let (nr, np) = (axes.theta_r_deg.len(), axes.dphi_deg.len());
+    let geometries = axes.len();
+    let width = columns(quantities).len();
+    let block = BLOCK.min(geometries.max(1));
+    let has = |q: Quantity| quantities.contains(&q);
+    let (mut ti, mut tr, mut pr) = (vec![0.0; block], vec![0.0; block], vec![0.0; block]);
+    let pi = vec![0.0; block];
+    let mut m = vec![[0.0; 16]; block];
+    let (mut b, mut d, mut a) = (vec![0.0; block], vec![0.0; block], vec![0.0; block]);
+    let mut rows = vec![0.0; block * width];
+    for &l in wavelength_um {
+        let wl = vec![l; block];
+        for start in (0..geometries).step_by(block) {
+            let len = block.min(geometries - start);
+            for k in 0..len {
+                let g = start + k;
+                let (i, r, p) = (g / (nr * np), (g / np) % nr, g % np);
+                ti[k] = axes.theta_i_deg[i].to_radians();
+                tr[k] = axes.theta_r_deg[r].to_radians();
+                pr[k] = axes.dphi_deg[p].to_radians();
+            }
+            let batch = GeometryBatch::new(&ti[..len], &pi[..len], &tr[..len], &pr[..len])?;
+            let engine = Engine::new(material).with_wavelengths(&wl[..len])?;
+            if has(Quantity::Mueller) {
+                engine.mueller_into(&batch, &mut m[..len])?;
+            }
+            if has(Quantity::Brdf) || has(Quantity::Dolp) || has(Quantity::Aolp) {
+                engine.brdf_dolp_aolp_into(&batch, &mut b[..len], &mut d[..len], &mut a[..len])?;
+            }
+            for k in 0..len {
+                let row = &mut rows[k * width..(k + 1) * width];
+                let mut c = 0;
+                for q in quantities {
+                    if *q == Quantity::Mueller {
+                        row[c..c + 16].copy_from_slice(&m[k]);
+                        c += 16;
+                        continue;
+                    }
+                    row[c] = match q {
+                        Quantity::Brdf => b[k],
+                        Quantity::Dolp => d[k],
+                        _ => a[k].to_degrees(),
+                    };
+                    c += 1;
+                }
+            }
+            sink(&rows[..len * width])?;
+        }
+    }
+    Ok(())
+}
+
+/// Streams the rows of every material of `cfg` ([`material_rows`]) into `path`, calling
+/// `progress(rows written, rows)` after each block.
+fn write_table(
+    cfg: &LutConfig,
+    cols: &[String],
+    path: &Path,
+    progress: &mut dyn FnMut(u64, u64),
+) -> TaskResult<()> {
     let io_err = |source: std::io::Error| {
         TaskError::Io(polbrdf_io::Error::Write {
             path: path.to_path_buf(),
@@ -119,21 +213,12 @@ fn write_table(cfg: &LutConfig, cols: &[String], path: &Path) -> TaskResult<()> 
     let file = std::fs::File::create(path).map_err(io_err)?;
     let mut w = NpyWriter::new(BufWriter::with_capacity(1 << 22, file), cols, cfg.rows())
         .map_err(io_err)?;
-    let (ni, nr, np) = (
-        cfg.theta_i_deg.len(),
-        cfg.theta_r_deg.len(),
-        cfg.dphi_deg.len(),
-    );
-    let geometries = ni * nr * np;
-    let width = cols.len();
-    let has = |q: Quantity| cfg.quantities.contains(&q);
-    let mut ti = vec![0.0; BLOCK];
-    let mut tr = vec![0.0; BLOCK];
-    let mut pr = vec![0.0; BLOCK];
-    let pi = vec![0.0; BLOCK];
-    let mut m = vec![[0.0; 16]; BLOCK];
-    let (mut b, mut d, mut a) = (vec![0.0; BLOCK], vec![0.0; BLOCK], vec![0.0; BLOCK]);
-    let mut rows = vec![0.0; BLOCK * width];
+    let axes = Axes {
+        theta_i_deg: &cfg.theta_i_deg,
+        theta_r_deg: &cfg.theta_r_deg,
+        dphi_deg: &cfg.dphi_deg,
+    };
+    let (mut done, total) = (0, cfg.rows());
     for (_, spec) in &cfg.materials {
         // As the Python package builds it: a spectral index at the first wavelength of its
         // data (every evaluation takes the index at its own wavelength).
@@ -141,57 +226,18 @@ fn write_table(cfg: &LutConfig, cols: &[String], path: &Path) -> TaskResult<()> 
             Some((lo, _)) => spec.build_at(lo),
             None => spec.build(),
         }?;
-        for &l in &cfg.wavelength_um {
-            let wl = vec![l; BLOCK];
-            for start in (0..geometries).step_by(BLOCK) {
-                let len = BLOCK.min(geometries - start);
-                for k in 0..len {
-                    let g = start + k;
-                    let (i, r, p) = (g / (nr * np), (g / np) % nr, g % np);
-                    ti[k] = cfg.theta_i_deg[i].to_radians();
-                    tr[k] = cfg.theta_r_deg[r].to_radians();
-                    pr[k] = cfg.dphi_deg[p].to_radians();
-                }
-                let batch = GeometryBatch::new(&ti[..len], &pi[..len], &tr[..len], &pr[..len])?;
-                let engine = Engine::new(&material).with_wavelengths(&wl[..len])?;
-                if has(Quantity::Mueller) {
-                    engine.mueller_into(&batch, &mut m[..len])?;
-                }
-                if has(Quantity::Brdf) || has(Quantity::Dolp) || has(Quantity::Aolp) {
-                    engine.brdf_dolp_aolp_into(
-                        &batch,
-                        &mut b[..len],
-                        &mut d[..len],
-                        &mut a[..len],
-                    )?;
-                }
-                for k in 0..len {
-                    let row = &mut rows[k * width..(k + 1) * width];
-                    let mut c = 0;
-                    for q in &cfg.quantities {
-                        match q {
-                            Quantity::Mueller => {
-                                row[c..c + 16].copy_from_slice(&m[k]);
-                                c += 16;
-                            }
-                            Quantity::Brdf => {
-                                row[c] = b[k];
-                                c += 1;
-                            }
-                            Quantity::Dolp => {
-                                row[c] = d[k];
-                                c += 1;
-                            }
-                            Quantity::Aolp => {
-                                row[c] = a[k].to_degrees();
-                                c += 1;
-                            }
-                        }
-                    }
-                }
-                w.write_rows(&rows[..len * width]).map_err(io_err)?;
-            }
-        }
+        material_rows(
+            &material,
+            &cfg.wavelength_um,
+            axes,
+            &cfg.quantities,
+            |rows| {
+                w.write_rows(rows).map_err(io_err)?;
+                done += (rows.len() / cols.len()) as u64;
+                progress(done, total);
+                Ok(())
+            },
+        )?;
     }
     let file = w.finish().map_err(io_err)?;
     let file = file.into_inner().map_err(|e| io_err(e.into_error()))?;
@@ -205,9 +251,22 @@ fn write_table(cfg: &LutConfig, cols: &[String], path: &Path) -> TaskResult<()> 
 /// [`TaskError::Io`] naming the file (an existing `out` is refused); [`TaskError::Model`] for
 /// a material the engine refuses.
 pub fn write_lut(cfg: &LutConfig, out: &Path) -> TaskResult<()> {
+    write_lut_with_progress(cfg, out, &mut |_, _| {})
+}
+
+/// [`write_lut`], calling `progress(rows written, rows)` after each block of rows (for a
+/// progress bar: the adapters draw it).
+///
+/// # Errors
+/// As [`write_lut`].
+pub fn write_lut_with_progress(
+    cfg: &LutConfig,
+    out: &Path,
+    progress: &mut dyn FnMut(u64, u64),
+) -> TaskResult<()> {
     let stage = polbrdf_io::StagingDir::create(out)?;
     let cols = columns(&cfg.quantities);
-    write_table(cfg, &cols, &stage.path().join("table.npy"))?;
+    write_table(cfg, &cols, &stage.path().join("table.npy"), progress)?;
     let doc = sidecar(cfg, &cols)?;
     let text = serde_json::to_string_pretty(&doc).expect("JSON of finite values");
     std::fs::write(stage.path().join("attrs.json"), text + "\n").map_err(|source| {

@@ -16,6 +16,13 @@ use std::path::Path;
 /// Bands of a table the stock plugin reads.
 pub const PLUGIN_BANDS: usize = 5;
 
+/// The default bands of an export (nm): the KAIST wavelengths, the only band count the stock
+/// plugin reads.
+pub const DEFAULT_BANDS_NM: [u16; PLUGIN_BANDS] = [450, 500, 550, 600, 650];
+
+/// The default export grid: φ_d 10°, θ_d 2°, θ_h 1° (about 50 MB).
+pub const DEFAULT_GRID: [usize; 3] = [37, 46, 91];
+
 /// Nodes of an export grid axis.
 pub const GRID_NODES: std::ops::RangeInclusive<usize> = 2..=4096;
 
@@ -154,6 +161,20 @@ pub fn cells(
 /// [`TaskError::Invalid`] for the request; [`TaskError::Model`] when the material cannot be
 /// built at a band; [`TaskError::Io`] for the output.
 pub fn export(spec: &MaterialSpec, req: &ExportRequest, path: &Path) -> TaskResult<u64> {
+    export_with_progress(spec, req, path, &mut |_, _| {})
+}
+
+/// [`export`], calling `progress(done, total)` after each φ_d slab is computed (for a progress
+/// bar: the adapters draw it; `total` is the number of slabs).
+///
+/// # Errors
+/// As [`export`].
+pub fn export_with_progress(
+    spec: &MaterialSpec,
+    req: &ExportRequest,
+    path: &Path,
+    progress: &mut dyn FnMut(usize, usize),
+) -> TaskResult<u64> {
     req.validate()?;
     let materials = req
         .bands_nm
@@ -171,7 +192,14 @@ pub fn export(spec: &MaterialSpec, req: &ExportRequest, path: &Path) -> TaskResu
         &theta_d,
         &theta_h,
         &req.bands_nm,
-        |k, range| cells(&materials, phi_d[k], &theta_d, &theta_h, range),
+        |k, range| {
+            let slab_done = range.end == d * h;
+            let out = cells(&materials, phi_d[k], &theta_d, &theta_h, range);
+            if slab_done {
+                progress(k + 1, p);
+            }
+            out
+        },
     )?;
     Ok(req.matrix_bytes())
 }
@@ -343,6 +371,33 @@ impl BandFit {
                 "refused": e.to_string(), "table": counts}),
         }
     }
+}
+
+/// Fits every band of `table` in turn ([`fit_band`], stride from [`plan`]) and returns the
+/// `fit.json` document ([`document`]). `each` sees every band's fit as soon as it is done (for
+/// residual plots, summaries and progress) and may stop the run with its error; no band's
+/// data outlives its turn.
+///
+/// # Errors
+/// As [`fit_band`]; what `each` returns.
+#[allow(clippy::too_many_arguments)] // The fit's inputs, each a plain value of the request.
+pub fn fit_table<E: From<TaskError>>(
+    table: &mut PbsdfTable,
+    base: &MaterialSpec,
+    free: &[Param],
+    stride: usize,
+    exclude_inadmissible: bool,
+    opts: &FitOptions,
+    mut each: impl FnMut(&BandFit) -> Result<(), E>,
+) -> Result<serde_json::Value, E> {
+    let data = table.path().to_path_buf();
+    let mut bands = Vec::new();
+    for b in 0..table.wavelengths_nm.len() {
+        let fitted = fit_band(table, b, base, free, stride, exclude_inadmissible, opts)?;
+        each(&fitted)?;
+        bands.push(fitted.to_json(&data, exclude_inadmissible));
+    }
+    Ok(document(bands, free, &data, stride))
 }
 
 /// The `fit.json` document of a table's band fits, from their entries ([`BandFit::to_json`],
