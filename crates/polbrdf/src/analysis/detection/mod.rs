@@ -9,16 +9,22 @@
 //! | §3 signal and noise of a channel | [`noise`] |
 //! | §4 the Stokes estimate, its covariance, the features | [`estimate`] |
 //! | §5 `d'`, pixels on target, `P_d`, `R_max` | [`statistics`] |
+//! | §6 the simulated DoFP frame and its Stokes images | [`frame`] |
+//! | §4 the Rician bias of the estimated DoLP | [`dolp_bias`] |
+//! | the range's uncertainty from fitted parameters' covariance | [`uncertainty`] |
 //!
 //! The Stokes vectors given to a [`Detector`] are the band-integrated radiances the sensor's
 //! channels weigh (for a photon-counting camera, weighted by its photon response
 //! [`noise::photon_band`]); the path's radiances are in the same units.
 
 pub mod analyzer;
+pub mod dolp_bias;
 pub mod estimate;
+pub mod frame;
 pub mod noise;
 pub mod path;
 pub mod statistics;
+pub mod uncertainty;
 
 pub use analyzer::Analyzer;
 pub use estimate::{Estimate, Moments};
