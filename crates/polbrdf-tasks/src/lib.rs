@@ -17,6 +17,7 @@ mod contrast_json;
 pub mod emission;
 mod error;
 pub mod fit;
+pub mod frame;
 pub mod hemisphere;
 pub mod lut;
 pub mod pbsdf;

@@ -6,6 +6,7 @@ mod common;
 mod albedo_check;
 mod contrast;
 mod emission;
+mod frame;
 mod radiance;
 mod scene;
 mod spectrum;
