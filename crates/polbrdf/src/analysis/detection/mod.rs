@@ -9,6 +9,7 @@
 //! | §3 signal and noise of a channel | [`noise`] |
 //! | §4 the Stokes estimate, its covariance, the features | [`estimate`] |
 //! | §5 `d'`, pixels on target, `P_d`, `R_max` | [`statistics`] |
+//! | a sensor file's sensor and spectrum | [`sensor`] |
 //!
 //! The Stokes vectors given to a [`Detector`] are the band-integrated radiances the sensor's
 //! channels weigh (for a photon-counting camera, weighted by its photon response
@@ -18,12 +19,14 @@ pub mod analyzer;
 pub mod estimate;
 pub mod noise;
 pub mod path;
+pub mod sensor;
 pub mod statistics;
 
 pub use analyzer::Analyzer;
 pub use estimate::{Estimate, Moments};
 pub use noise::{NoiseModel, PhotonCounting, QuantumEfficiency};
-pub use path::{Path, PathTable};
+pub use path::{Horizon, Path, PathSpec, PathTable};
+pub use sensor::{Layout, NoiseSpec, SensorSpec};
 
 use crate::error::{positive, Error, Result};
 
