@@ -9,6 +9,7 @@
 //! | §3 signal and noise of a channel | [`noise`] |
 //! | §4 the Stokes estimate, its covariance, the features | [`estimate`] |
 //! | §5 `d'`, pixels on target, `P_d`, `R_max` | [`statistics`] |
+//! | a sensor file's sensor and spectrum | [`sensor`] |
 //! | §6 the simulated DoFP frame and its Stokes images | [`frame`] |
 //! | §4 the Rician bias of the estimated DoLP | [`dolp_bias`] |
 //! | the range's uncertainty from fitted parameters' covariance | [`uncertainty`] |
@@ -23,13 +24,15 @@ pub mod estimate;
 pub mod frame;
 pub mod noise;
 pub mod path;
+pub mod sensor;
 pub mod statistics;
 pub mod uncertainty;
 
 pub use analyzer::Analyzer;
 pub use estimate::{Estimate, Moments};
 pub use noise::{NoiseModel, PhotonCounting, QuantumEfficiency};
-pub use path::{Path, PathTable};
+pub use path::{Horizon, Path, PathSpec, PathTable};
+pub use sensor::{Layout, NoiseSpec, SensorSpec};
 
 use crate::error::{positive, Error, Result};
 

@@ -218,3 +218,53 @@ impl PathTable {
         Ok((t0 + w * (t1 - t0), l0 + w * (l1 - l0)))
     }
 }
+
+/// The horizon radiance of a homogeneous path, as a scene file gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Horizon {
+    /// A spectral radiance (W·m⁻²·sr⁻¹·µm⁻¹), constant across the band.
+    Radiance(f64),
+    /// The air temperature (K): `L_h = B_λ(λ, T_air)` (thermal infrared).
+    AirTemperature(f64),
+}
+
+/// The path as a scene file gives it (`[path]`, docs/detection.md): before the band integral.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PathSpec {
+    /// Homogeneous: extinction (m⁻¹) and horizon radiance.
+    Homogeneous {
+        /// `β` (m⁻¹).
+        extinction_per_m: f64,
+        /// `L_h`.
+        horizon: Horizon,
+    },
+    /// A table whose path radiance is a spectral radiance constant across the band.
+    Table(Path),
+}
+
+impl PathSpec {
+    /// The path in the units of signals integrated on `nodes` `(λ, weight)`
+    /// ([`crate::Spectrum::integral_nodes`]): `L_h·Σw`, `Σ w·B_λ(λ, T_air)`, or the table's
+    /// `L_path·Σw` (detection.md §1).
+    ///
+    /// # Errors
+    /// As [`Path::homogeneous`]; [`Error::InvalidParameter`] naming `air_temperature_k`.
+    pub fn path(&self, nodes: &[(f64, f64)]) -> Result<Path> {
+        let total: f64 = nodes.iter().map(|n| n.1).sum();
+        match self {
+            PathSpec::Homogeneous {
+                extinction_per_m,
+                horizon: Horizon::Radiance(l),
+            } => Path::homogeneous(*extinction_per_m, l * total),
+            PathSpec::Homogeneous {
+                extinction_per_m,
+                horizon: Horizon::AirTemperature(t),
+            } => {
+                positive("air_temperature_k", *t)?;
+                let l = super::noise::band_planck(nodes, *t);
+                Path::homogeneous(*extinction_per_m, l)
+            }
+            PathSpec::Table(p) => Ok(p.with_radiance_scaled(total)),
+        }
+    }
+}
