@@ -99,6 +99,13 @@ pub struct Args {
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
     #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
     pub sun_deg: Option<String>,
+    /// Also simulate the camera frame at the best view and the first range: frame.png/.svg
+    /// and frame_*.npy (photon-counting DoFP sensors; docs/detection-frame.md).
+    #[arg(long)]
+    pub frame: bool,
+    /// The seed of the simulated frame.
+    #[arg(long, value_name = "N", default_value_t = 0, requires = "frame")]
+    pub seed: u64,
     /// Output directory.
     #[arg(long, value_name = "DIR", default_value = "detect-out")]
     pub out: PathBuf,
@@ -198,8 +205,16 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         ("best.json".into(), best.into_bytes()),
     ];
     figures(&mut files, &study)?;
+    let frame = if args.frame {
+        Some(crate::detect_frame::add(&mut files, &study, args.seed)?)
+    } else {
+        None
+    };
     let paths = write_all(&args.out, &files)?;
     summary(&study, elapsed);
+    if let Some(line) = frame {
+        println!("{line}");
+    }
     println!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
 }

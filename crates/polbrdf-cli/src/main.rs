@@ -10,6 +10,7 @@ mod bench;
 mod check;
 mod contrast;
 mod detect;
+mod detect_frame;
 mod emission;
 mod error;
 mod eval;

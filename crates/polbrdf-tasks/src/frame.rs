@@ -4,10 +4,12 @@
 //! reconstructed S0, DoLP and AoLP images — with the `.npy` files both adapters write (so the
 //! CLI's files and Python's arrays are the same bytes).
 
+use crate::detect::DetectStudy;
 use crate::error::{TaskError, TaskResult};
 use polbrdf::analysis::detection::frame::{simulate, Frame, FrameSpec, MAX_SIDE};
 use polbrdf::analysis::detection::statistics::pixels_on_target;
 use polbrdf::analysis::detection::{Detection, Detector};
+use polbrdf::analysis::detection::{Layout, NoiseSpec};
 use polbrdf::Stokes;
 
 /// The smallest frame side, super-pixels: room for background statistics around a small target.
@@ -98,6 +100,41 @@ pub fn run(req: &FrameRequest) -> TaskResult<FrameOutput> {
         frame: simulate(&spec)?,
         pixels_on_target: pixels,
         detection,
+    })
+}
+
+/// The frame of a detection study (`polbrdf detect --frame`): at its best-ranked view (by
+/// detection range; the first view without a range search) and its first range, with the sensor
+/// file's ADC.
+///
+/// # Errors
+/// [`TaskError::Invalid`] naming `frame` for a sensor that is not a photon-counting DoFP
+/// camera; as [`run`].
+pub fn of_study(study: &DetectStudy, side: Option<usize>, seed: u64) -> TaskResult<FrameOutput> {
+    let spec = &study.sensor.spec;
+    let NoiseSpec::PhotonCounting { adc_bits, .. } = spec.noise else {
+        return Err(TaskError::invalid(
+            "frame",
+            "a simulated frame needs a photon-counting camera; the sensor gives a NEL or NETD \
+             (thermal), which has no electrons to draw",
+        ));
+    };
+    if spec.layout != Layout::Dofp {
+        return Err(TaskError::invalid(
+            "frame",
+            "a simulated frame needs a division-of-focal-plane sensor (layout = \"dofp\")",
+        ));
+    }
+    let view = study.ranked()[0];
+    run(&FrameRequest {
+        detector: study.detector.clone(),
+        target: view.target,
+        background: view.background,
+        theta_r_deg: view.theta_r.to_degrees(),
+        range_m: study.ranges_m[0],
+        adc_bits,
+        side,
+        seed,
     })
 }
 
