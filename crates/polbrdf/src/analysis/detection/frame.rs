@@ -204,7 +204,8 @@ pub struct Frame {
     pub s2: Vec<f64>,
     /// Estimated DoLP per super-pixel.
     pub dolp: Vec<f64>,
-    /// Estimated AoLP per super-pixel, degrees in (−90°, 90°], from the analyzers' 0° axis.
+    /// Estimated AoLP per super-pixel, degrees in (−90°, 90°], from s toward p in the beam's
+    /// psps basis (`W₃⁺` undoes the camera roll, detection.md §2).
     pub aolp_deg: Vec<f64>,
     /// Measured statistics on the target.
     pub target: RegionStats,
