@@ -795,7 +795,7 @@ where
 
 /// A vertical colour bar of `scale` with its ticks and its rotated label: the bar's left edge at
 /// `bx`, spanning `top` to `bottom` (pixels, y downward); the label no further right than
-/// `right_limit`. Shared by the polar maps and the images ([`crate::image`]).
+/// `right_limit`. Shared by the polar maps and the images ([`crate::heatmap`]).
 pub(crate) fn draw_color_bar<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     scale: &ColorScale,
