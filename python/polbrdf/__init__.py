@@ -67,7 +67,7 @@ from .jobs import (
     read_measurements,
     read_pbsdf,
 )
-from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
+from .scene import Atmosphere, Band, PathToSensor, Scene, SceneObject, Sky, Sun, Surface
 from .tasks import (
     AlbedoTable,
     ContrastStudy,
@@ -92,6 +92,7 @@ __all__ = [
     "Illumination",
     "Material",
     "Measurements",
+    "PathToSensor",
     "PbsdfTable",
     "Radiance",
     "Scene",

@@ -10,6 +10,8 @@ mod bench;
 mod check;
 mod completions;
 mod contrast;
+mod detect;
+mod detect_frame;
 mod emission;
 mod error;
 mod eval;
@@ -127,6 +129,13 @@ enum Command {
     /// and background, ΔDoLP, the intensity ratio, the AoLP difference and the polarization
     /// contrast, with overview.png/svg.
     Contrast(contrast::Args),
+    /// Detection: will a polarization sensor see the target on its background, from which
+    /// view, by which feature (S0, DoLP or both), and out to what range (docs/detection.md).
+    ///
+    /// Writes into --out: detect.csv (one row per view and range), best.json (the views ranked
+    /// by detection range) and, on a grid, polar maps (PNG and SVG) of the detection range and
+    /// of P_d at the first --ranges-m.
+    Detect(detect::Args),
     /// Directional–hemispherical reflectance (albedo) at a set of incidence angles; values
     /// above 1 (energy created by the parameters) are flagged.
     Albedo(albedo::Args),
@@ -319,6 +328,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Explore { dir, port } => explore::run(dir.as_deref(), port),
         Command::Completions { shell } => completions::run(shell, &mut Cli::command()),
         Command::Contrast(args) => contrast::run(&args),
+        Command::Detect(args) => detect::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Emission(args) => emission::run(&args),
         Command::Radiance(args) => radiance::run(&args),
@@ -457,6 +467,9 @@ mod tests {
                 "30",
                 "--out",
                 "{X}",
+            ],
+            ("detect", "out") => &[
+                "detect", "--scene", "{s}", "--sensor", "{m}", "--out", "{X}",
             ],
             ("albedo", "output") => &["albedo", "--material", "{m}", "--output", "{X}"],
             ("emission", "output") => &["emission", "--material", "{m}", "--output", "{X}"],

@@ -9,6 +9,7 @@ mod bench;
 mod common;
 mod contrast;
 mod daylight;
+mod detect_frame;
 mod emission;
 mod eval;
 mod fit;

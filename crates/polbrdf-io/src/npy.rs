@@ -16,6 +16,9 @@
 //! count is not known in advance, [`NpyWriter::new_patchable`] reserves room for a 20-digit
 //! count and [`NpyWriter::finish_patched`] rewrites the header in place at the end (the header's
 //! length never changes).
+//!
+//! Images are plain arrays, not tables: [`array_f64`] and [`array_bool`] give the bytes of a
+//! file holding one (e.g. the simulated camera frame of `polbrdf detect --frame`).
 
 use crate::error::{Error, Result};
 use std::io::{Read, Seek, SeekFrom, Write};
@@ -764,9 +767,16 @@ fn header_block(columns: &[String], rows: u64) -> Vec<u8> {
         "{{'descr': [{}], 'fortran_order': False, 'shape': ({count},), }}",
         descr.join(", ")
     );
+    padded_header(&dict, spare)
+}
+
+/// The header block (magic to newline) around a header dict, with room for `spare` more
+/// characters: the lowest version that holds it, padded so the data starts at a multiple of
+/// 64 bytes.
+fn padded_header(dict: &str, spare: usize) -> Vec<u8> {
     let latin1 = dict.chars().all(|c| (c as u32) < 0x100);
     let body_len = |pre: usize| {
-        let unpadded = pre + encoded_len(&dict, latin1) + spare + 1;
+        let unpadded = pre + encoded_len(dict, latin1) + spare + 1;
         unpadded.div_ceil(ALIGN) * ALIGN - pre
     };
     let (version, pre) = if !latin1 {
@@ -801,6 +811,48 @@ fn encoded_len(s: &str, latin1: bool) -> usize {
     } else {
         s.len()
     }
+}
+
+/// The bytes of a `.npy` file holding a plain array of the given shape (C order), of `<f8`
+/// values (`numpy.load` gives a `float64` array of that shape) — for images, not tables.
+///
+/// # Errors
+/// `InvalidInput` when the shape's product is not the number of values.
+pub fn array_f64(shape: &[usize], values: &[f64]) -> std::io::Result<Vec<u8>> {
+    let mut out = array_header(shape, values.len(), "<f8")?;
+    out.reserve(values.len() * 8);
+    for v in values {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    Ok(out)
+}
+
+/// The bytes of a `.npy` file holding a plain boolean array (`|b1`, one byte 0 or 1 per value)
+/// of the given shape (C order).
+///
+/// # Errors
+/// `InvalidInput` when the shape's product is not the number of values.
+pub fn array_bool(shape: &[usize], values: &[bool]) -> std::io::Result<Vec<u8>> {
+    let mut out = array_header(shape, values.len(), "|b1")?;
+    out.extend(values.iter().map(|&b| u8::from(b)));
+    Ok(out)
+}
+
+fn array_header(shape: &[usize], len: usize, descr: &str) -> std::io::Result<Vec<u8>> {
+    let count = shape.iter().try_fold(1usize, |a, &n| a.checked_mul(n));
+    if count != Some(len) {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("{len} values do not fill an array of shape {shape:?}"),
+        ));
+    }
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let shape = match dims.len() {
+        1 => format!("({},)", dims[0]),
+        _ => format!("({})", dims.join(", ")),
+    };
+    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    Ok(padded_header(&dict, 0))
 }
 
 /// A streaming `.npy` writer of a table of `<f8` columns.
@@ -1001,6 +1053,32 @@ mod tests {
             t.data.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
             data.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
         );
+    }
+
+    #[test]
+    fn plain_arrays_have_numpys_header_and_c_order_data() {
+        let values = [1.0, -2.0, 0.5, f64::NAN, 3.0, 4.0];
+        let bytes = array_f64(&[2, 3], &values).unwrap();
+        let text = String::from_utf8_lossy(&bytes[10..]).to_string();
+        assert!(text.starts_with("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }"));
+        let offset = bytes.len() - 8 * values.len();
+        assert_eq!(offset % ALIGN, 0);
+        assert_eq!(bytes[offset - 1], b'\n');
+        let back: Vec<u64> = bytes[offset..]
+            .chunks(8)
+            .map(|c| u64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(back, values.map(f64::to_bits));
+        // The table reader refuses it as a plain array, having parsed the header.
+        let e = parse_npy(&bytes, p()).unwrap_err().to_string();
+        assert!(e.contains("plain dtype `<f8` and shape [2, 3]"), "{e}");
+
+        let mask = array_bool(&[3], &[true, false, true]).unwrap();
+        assert!(String::from_utf8_lossy(&mask)
+            .contains("{'descr': '|b1', 'fortran_order': False, 'shape': (3,), }"));
+        assert_eq!(&mask[mask.len() - 3..], &[1, 0, 1]);
+        assert!(array_f64(&[2, 2], &values).is_err());
+        assert!(array_bool(&[usize::MAX, 2], &[]).is_err());
     }
 
     #[test]

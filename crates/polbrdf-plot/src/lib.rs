@@ -1,6 +1,6 @@
 //! # polbrdf-plot — figures for polbrdf, rendered in memory
 //!
-//! Two kinds of figure, both declared as plain data and rendered to bytes — a PNG file
+//! Three kinds of figure, all declared as plain data and rendered to bytes — a PNG file
 //! (`png()`) and an SVG document (`svg()`) — so the caller decides where and how to write them
 //! (polbrdf writes them atomically with `polbrdf_io::write_atomic`):
 //!
@@ -8,7 +8,9 @@
 //! - [`PolarFigure`]: heat maps of the viewing hemisphere ([`PolarPanel`]: θ radial from 0° to
 //!   90°, φ counterclockwise), with perceptually uniform [`Colormap`]s, a labelled colour bar
 //!   ([`ColorScale`]), polar grid circles, azimuth labels and marks ([`PolarMark`]) for the sun,
-//!   the specular direction and the best directions.
+//!   the specular direction and the best directions;
+//! - [`HeatmapFigure`]: images on a pixel grid ([`HeatmapPanel`]: a camera frame, a Stokes
+//!   image), nearest neighbour, with the same colour maps and colour bars.
 //!
 //! Text is drawn with the embedded DejaVu Sans (no system font library is needed).
 //!
@@ -41,6 +43,8 @@ pub mod error;
 #[cfg(feature = "render")]
 pub mod font;
 #[cfg(feature = "render")]
+pub mod heatmap;
+#[cfg(feature = "render")]
 pub mod polar;
 #[cfg(feature = "render")]
 mod render;
@@ -49,6 +53,8 @@ mod render;
 pub use chart::{power_of_ten, Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
 pub use colormap::Colormap;
 pub use error::{Error, Result};
+#[cfg(feature = "render")]
+pub use heatmap::{HeatmapFigure, HeatmapPanel};
 pub use plotters::style::RGBColor;
 #[cfg(feature = "render")]
 pub use polar::{

@@ -17,7 +17,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-type DrawResult = std::result::Result<(), Box<dyn std::error::Error + Send + Sync>>;
+pub(crate) type DrawResult = std::result::Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
 /// Height of the title strip at the top of each panel, pixels.
 const TITLE_H: f64 = 46.0;
@@ -188,7 +188,7 @@ impl ColorScale {
 
     /// Maps a value to the data space where interpolation happens (log10 for a log scale;
     /// non-positive values go below the bottom of the bar).
-    fn forward(&self, v: f64) -> f64 {
+    pub(crate) fn forward(&self, v: f64) -> f64 {
         if !self.log {
             return v;
         }
@@ -203,7 +203,7 @@ impl ColorScale {
 
     /// Position `t` on the colour bar (0 bottom, 1 top; outside for values beyond the limits)
     /// of a value in interpolation space.
-    fn position(&self, x: f64) -> f64 {
+    pub(crate) fn position(&self, x: f64) -> f64 {
         let (lo, hi) = (self.forward(self.min), self.forward(self.max));
         let x = match self.period {
             Some(p) => hi - (hi - x).rem_euclid(p),
@@ -582,15 +582,15 @@ fn raster(p: &PolarPanel, disk: &Disk) -> (i64, i64, u32, Vec<Option<RGBColor>>)
     (x0, y0, side, out)
 }
 
-fn font(size: f64) -> TextStyle<'static> {
+pub(crate) fn font(size: f64) -> TextStyle<'static> {
     TextStyle::from((FAMILY, size).into_font()).color(&BLACK)
 }
 
-fn centered(size: f64) -> TextStyle<'static> {
+pub(crate) fn centered(size: f64) -> TextStyle<'static> {
     font(size).pos(Pos::new(HPos::Center, VPos::Center))
 }
 
-fn pt(x: f64, y: f64) -> (i32, i32) {
+pub(crate) fn pt(x: f64, y: f64) -> (i32, i32) {
     (x.round() as i32, y.round() as i32)
 }
 
@@ -750,47 +750,13 @@ where
 
     // Colour bar.
     let bx = ox + w - BAR_AREA_W + 8.0;
-    let bw = 20.0;
-    let (top, bottom) = (disk.cy - disk.r, disk.cy + disk.r);
-    let height = bottom - top;
-    let (it, ib) = (top.round() as i32, bottom.round() as i32);
-    for yy in it..ib {
-        let t = 1.0 - (f64::from(yy - it) + 0.5) / f64::from(ib - it);
-        root.draw(&Rectangle::new(
-            [(bx as i32, yy), ((bx + bw) as i32, yy + 1)],
-            p.scale.colormap.rgb(t).filled(),
-        ))?;
-    }
-    root.draw(&Rectangle::new(
-        [(bx as i32, it), ((bx + bw) as i32, ib)],
-        ShapeStyle::from(&BLACK).stroke_width(1),
-    ))?;
-    let tick_style = font(14.0).pos(Pos::new(HPos::Left, VPos::Center));
-    let mut widest = 0u32;
-    for (t, label) in p.scale.tick_marks() {
-        widest = widest.max(root.estimate_text_size(&label, &tick_style)?.0);
-        let y = bottom - t.clamp(0.0, 1.0) * height;
-        root.draw(&PathElement::new(
-            vec![pt(bx + bw, y), pt(bx + bw + 5.0, y)],
-            ShapeStyle::from(&BLACK).stroke_width(1),
-        ))?;
-        root.draw(&Text::new(label, pt(bx + bw + 8.0, y), tick_style.clone()))?;
-    }
-    let label_style = TextStyle::from(
-        (FAMILY, 16.0)
-            .into_font()
-            .transform(FontTransform::Rotate270),
-    )
-    .color(&BLACK)
-    .pos(Pos::new(HPos::Center, VPos::Center));
-    root.draw(&Text::new(
-        p.scale.label.clone(),
-        pt(
-            (bx + bw + 8.0 + f64::from(widest) + 14.0).min(ox + w - 12.0),
-            disk.cy,
-        ),
-        label_style,
-    ))?;
+    draw_color_bar(
+        root,
+        &p.scale,
+        bx,
+        (disk.cy - disk.r, disk.cy + disk.r),
+        ox + w - 12.0,
+    )?;
 
     // Legend: one entry per distinct legend text, then how to read the axes.
     let ly = oy + h - LEGEND_H / 2.0 - 2.0;
@@ -823,6 +789,62 @@ where
         font(14.0)
             .color(&RGBColor(90, 90, 90))
             .pos(Pos::new(HPos::Left, VPos::Center)),
+    ))?;
+    Ok(())
+}
+
+/// A vertical colour bar of `scale` with its ticks and its rotated label: the bar's left edge at
+/// `bx`, spanning `top` to `bottom` (pixels, y downward); the label no further right than
+/// `right_limit`. Shared by the polar maps and the images ([`crate::heatmap`]).
+pub(crate) fn draw_color_bar<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    scale: &ColorScale,
+    bx: f64,
+    (top, bottom): (f64, f64),
+    right_limit: f64,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let bw = 20.0;
+    let height = bottom - top;
+    let (it, ib) = (top.round() as i32, bottom.round() as i32);
+    for yy in it..ib {
+        let t = 1.0 - (f64::from(yy - it) + 0.5) / f64::from(ib - it);
+        root.draw(&Rectangle::new(
+            [(bx as i32, yy), ((bx + bw) as i32, yy + 1)],
+            scale.colormap.rgb(t).filled(),
+        ))?;
+    }
+    root.draw(&Rectangle::new(
+        [(bx as i32, it), ((bx + bw) as i32, ib)],
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    let tick_style = font(14.0).pos(Pos::new(HPos::Left, VPos::Center));
+    let mut widest = 0u32;
+    for (t, label) in scale.tick_marks() {
+        widest = widest.max(root.estimate_text_size(&label, &tick_style)?.0);
+        let y = bottom - t.clamp(0.0, 1.0) * height;
+        root.draw(&PathElement::new(
+            vec![pt(bx + bw, y), pt(bx + bw + 5.0, y)],
+            ShapeStyle::from(&BLACK).stroke_width(1),
+        ))?;
+        root.draw(&Text::new(label, pt(bx + bw + 8.0, y), tick_style.clone()))?;
+    }
+    let label_style = TextStyle::from(
+        (FAMILY, 16.0)
+            .into_font()
+            .transform(FontTransform::Rotate270),
+    )
+    .color(&BLACK)
+    .pos(Pos::new(HPos::Center, VPos::Center));
+    root.draw(&Text::new(
+        scale.label.clone(),
+        pt(
+            (bx + bw + 8.0 + f64::from(widest) + 14.0).min(right_limit),
+            0.5 * (top + bottom),
+        ),
+        label_style,
     ))?;
     Ok(())
 }

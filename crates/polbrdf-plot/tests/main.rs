@@ -1,3 +1,4 @@
 //! Tests of the figures (one test binary, modules by topic).
 
+mod heatmap;
 mod polar;

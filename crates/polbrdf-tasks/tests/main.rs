@@ -5,8 +5,10 @@ mod common;
 
 mod albedo_check;
 mod contrast;
+mod detect;
 mod emission;
 mod explore;
+mod frame;
 mod radiance;
 mod scene;
 mod spectrum;

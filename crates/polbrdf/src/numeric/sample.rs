@@ -2,6 +2,10 @@
 //! studies: deterministic, so that the same seed gives the same numbers on every platform and in
 //! every tool (the `polbrdf bench` command and the Python package's Rust baseline time identical
 //! inputs; synthetic measurement sets are reproducible).
+//!
+//! It is also a `rand_core` generator ([`rand_core::Rng`], through [`rand_core::TryRng`]), so
+//! the distributions of `rand_distr` (Poisson, normal) draw from it: the simulated camera frame
+//! (`analysis::detection::frame`) is reproducible from its seed like everything else.
 
 /// SplitMix64 (Steele, Lea & Flood 2014): 64-bit state, uniform doubles in [0, 1).
 #[derive(Debug, Clone)]
@@ -20,14 +24,18 @@ impl SplitMix64 {
         }
     }
 
-    /// Uniform in [0, 1), with 53 random bits.
-    pub fn next_f64(&mut self) -> f64 {
+    /// The next 64 random bits.
+    pub fn next_bits(&mut self) -> u64 {
         self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.state;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1), with 53 random bits.
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_bits() >> 11) as f64 / (1u64 << 53) as f64
     }
 
     /// Uniform in [lo, hi).
@@ -57,5 +65,27 @@ impl SplitMix64 {
         let (s, c) = (2.0 * std::f64::consts::PI * u2).sin_cos();
         self.spare = Some(r * s);
         r * c
+    }
+}
+
+impl rand_core::TryRng for SplitMix64 {
+    type Error = core::convert::Infallible;
+
+    /// The high 32 bits of [`SplitMix64::next_bits`] (the better-mixed half).
+    fn try_next_u32(&mut self) -> Result<u32, Self::Error> {
+        Ok((self.next_bits() >> 32) as u32)
+    }
+
+    fn try_next_u64(&mut self) -> Result<u64, Self::Error> {
+        Ok(self.next_bits())
+    }
+
+    /// Little-endian bytes of successive [`SplitMix64::next_bits`] values.
+    fn try_fill_bytes(&mut self, dst: &mut [u8]) -> Result<(), Self::Error> {
+        for chunk in dst.chunks_mut(8) {
+            let bytes = self.next_bits().to_le_bytes();
+            chunk.copy_from_slice(&bytes[..chunk.len()]);
+        }
+        Ok(())
     }
 }
