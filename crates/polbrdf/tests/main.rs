@@ -14,4 +14,5 @@ mod planes;
 mod precision;
 mod properties;
 mod spectral;
+mod sun_position;
 mod vectors;
