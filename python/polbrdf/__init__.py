@@ -55,6 +55,7 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
     ) from _e
 
 from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
+from .sun import sun_position
 from .tasks import (
     AlbedoTable,
     ContrastStudy,
@@ -101,6 +102,7 @@ __all__ = [
     "stokes_aolp",
     "stokes_dolp",
     "stokes_dop",
+    "sun_position",
 ]
 
 try:

@@ -54,6 +54,7 @@ __all__ = [
     "radiance_flat",
     "radiance_scene",
     "read_scene_keys",
+    "sun_task",
     "vocabulary",
 ]
 
@@ -344,6 +345,18 @@ def albedo_task(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The task layer's albedo (``polbrdf albedo``): theta_i_deg, albedo, surface, volume;
     an empty ``theta_i_deg`` takes the task's default angles."""
+
+def sun_task(
+    date_time: str,
+    latitude_deg: float,
+    longitude_deg: float,
+    elevation_m: float | None,
+    pressure_hpa: float | None,
+    temperature_c: float | None,
+    delta_t_s: float | None,
+    phi0_azimuth_deg: float | None,
+) -> str:
+    """The task layer's sun position (``polbrdf sun``): its JSON document."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

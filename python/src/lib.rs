@@ -58,6 +58,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tasks::contrast_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::hemisphere_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::albedo_task, m)?)?;
+    m.add_function(wrap_pyfunction!(tasks::sun_task, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,

@@ -25,6 +25,7 @@ mod radiance;
 mod reproduce;
 mod residuals;
 mod spectrum;
+mod sun;
 mod sweep;
 mod view;
 
@@ -185,6 +186,9 @@ enum Command {
     /// Write a material as a Mitsuba 3 `measured_polarized` table (.pbsdf), which the stock
     /// plugin renders (docs/model.md §20).
     Export(export::Args),
+    /// The sun's position at a date, time and place (NREL SPA, ±0.0003°): zenith angle,
+    /// compass azimuth (from north toward east) and the azimuth φ in the surface frame, as JSON.
+    Sun(sun::Args),
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -298,6 +302,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Lut { config, out } => lut::run(&config, &out),
         Command::Spectrum(args) => sweep::run(&args),
         Command::Export(args) => export::run(&args),
+        Command::Sun(args) => sun::run(&args),
     }
 }
 

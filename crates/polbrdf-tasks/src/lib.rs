@@ -23,6 +23,7 @@ pub mod pbsdf;
 pub mod radiance;
 pub mod scene;
 pub mod spectrum;
+pub mod sun;
 
 pub use contrast_json::sky_json;
 pub use error::{TaskError, TaskResult};

@@ -324,3 +324,49 @@ pub fn sun_position(time: &CivilTime, site: &Site, delta_t_s: Option<f64>) -> Re
         julian_day,
     })
 }
+
+/// A sun given by date, time and place (a scene's `[sun]` with `date_time`): where it is, and
+/// how the surface frame lies on the ground.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunTime {
+    /// The instant, on the local clock.
+    pub time: CivilTime,
+    /// The place.
+    pub site: Site,
+    /// ΔT (TT − UT1), s; `None`: estimated from the date.
+    pub delta_t_s: Option<f64>,
+    /// The compass azimuth (degrees from north toward east) of the surface frame's φ = 0
+    /// axis, in [0, 360).
+    pub phi0_azimuth_deg: f64,
+}
+
+impl SunTime {
+    /// The compass azimuth of φ = 0 when none is given: north.
+    pub const DEFAULT_PHI0_AZIMUTH_DEG: f64 = 0.0;
+
+    /// The sun's position ([`sun_position`]).
+    ///
+    /// # Errors
+    /// As [`sun_position`].
+    pub fn position(&self) -> Result<SunPosition> {
+        sun_position(&self.time, &self.site, self.delta_t_s)
+    }
+
+    /// The same place and frame at another time.
+    pub fn at(&self, time: CivilTime) -> Self {
+        Self { time, ..*self }
+    }
+
+    /// The sun's direction in the surface frame, `(θs, φs)` in radians, or `None` when it is
+    /// not above the horizon (its zenith angle, in radians, not below π/2).
+    ///
+    /// # Errors
+    /// As [`sun_position`].
+    pub fn surface_direction(&self) -> Result<(SunPosition, Option<(f64, f64)>)> {
+        let p = self.position()?;
+        let zenith = p.zenith_deg.to_radians() + 0.0;
+        let above = p.is_up() && zenith < std::f64::consts::FRAC_PI_2;
+        let phi = p.phi_deg(self.phi0_azimuth_deg).to_radians();
+        Ok((p, above.then_some((zenith, phi))))
+    }
+}
