@@ -54,7 +54,7 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
         "source folder python/polbrdf instead of the installed package (run from elsewhere)."
     ) from _e
 
-from .scene import Atmosphere, Band, Scene, SceneObject, Sky, Sun, Surface
+from .scene import Atmosphere, Band, PathToSensor, Scene, SceneObject, Sky, Sun, Surface
 from .sun import sun_position
 from .tasks import (
     AlbedoTable,
@@ -78,6 +78,7 @@ __all__ = [
     "HemisphereMap",
     "Illumination",
     "Material",
+    "PathToSensor",
     "Radiance",
     "Scene",
     "SceneObject",

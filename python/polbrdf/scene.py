@@ -112,9 +112,23 @@ class Atmosphere:
 
 
 @dataclass(frozen=True, kw_only=True)
+class PathToSensor:
+    """``[path]``: the path to a detecting sensor (``polbrdf detect``, docs/detection.md): the
+    extinction (``extinction_per_m``, m⁻¹, or ``visibility_km``) with the horizon radiance
+    (``horizon_radiance``, W·m⁻²·sr⁻¹·µm⁻¹, or ``air_temperature_k``), or a ``table`` CSV with
+    columns ``range_m, transmittance, path_radiance``."""
+
+    extinction_per_m: float | None = None
+    visibility_km: float | None = None
+    horizon_radiance: float | None = None
+    air_temperature_k: float | None = None
+    table: PathName | None = None
+
+
+@dataclass(frozen=True, kw_only=True)
 class Scene:
     """A scene file's content: one wavelength (``wavelength_um``, µm) or a ``band``, and the
-    tables ``surface``, ``target``, ``background``, ``sun``, ``sky``, ``atmosphere`` (``None``:
+    tables ``surface``, ``target``, ``background``, ``sun``, ``sky``, ``atmosphere``, ``path`` (``None``:
     the table is absent). Relative file names are taken relative to the working directory
     (:meth:`from_toml` gives them joined to the scene file's folder)."""
 
@@ -126,6 +140,7 @@ class Scene:
     sun: Sun | None = None
     sky: Sky | None = None
     atmosphere: Atmosphere | None = None
+    path: PathToSensor | None = None
 
     @classmethod
     def from_toml(cls, path: PathName) -> Scene:
@@ -173,6 +188,7 @@ _TABLES: dict[str, type] = {
     "sun": Sun,
     "sky": Sky,
     "atmosphere": Atmosphere,
+    "path": PathToSensor,
 }
 
 

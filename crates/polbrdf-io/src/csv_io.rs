@@ -793,7 +793,7 @@ fn band_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<polbrdf::Band> {
 
 /// A core error about the row `index` of a table (`InvalidParameterAt`) at that row's line;
 /// any other as an error of the whole file.
-fn row_error(path: &Path, lines: &[usize], e: polbrdf::Error) -> Error {
+pub(crate) fn row_error(path: &Path, lines: &[usize], e: polbrdf::Error) -> Error {
     match e {
         polbrdf::Error::InvalidParameterAt { name, index, .. } => Error::Field {
             path: path.to_path_buf(),

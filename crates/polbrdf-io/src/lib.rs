@@ -9,6 +9,7 @@
 pub mod arrow;
 pub mod csv_io;
 pub mod date_time;
+pub mod detection_csv;
 pub mod error;
 pub mod library;
 pub mod lut;
@@ -18,6 +19,7 @@ pub mod npy;
 pub mod pbsdf;
 pub mod refractive;
 pub mod scene;
+pub mod sensor;
 pub mod stream;
 pub mod table;
 pub mod tensorfile;
@@ -28,6 +30,7 @@ pub use csv_io::{
     parse_views_csv, read_band_csv, read_geometry_csv, read_sky_profile_csv, read_sky_table_csv,
     read_views_csv, CsvReader, CsvTable, GeometryTable,
 };
+pub use detection_csv::{parse_path_csv, parse_qe_csv, read_path_csv, read_qe_csv};
 pub use error::{Error, Result};
 pub use material::{load_material, material_to_toml, parse_material, read_material};
 pub use measurements::{parse_measurements_csv, read_measurements_csv, MeasurementTable};
@@ -36,6 +39,7 @@ pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
 pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
+pub use sensor::{parse_sensor, read_sensor, SensorFile};
 pub use tensorfile::TensorFile;
 pub use write::{
     check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,

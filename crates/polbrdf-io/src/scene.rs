@@ -48,6 +48,11 @@
 //! [atmosphere]
 //! transmittance = 0.9     # in [0, 1], default 1
 //! path_radiance = 0.2     # W·m⁻²·sr⁻¹·µm⁻¹, ≥ 0, default 0
+//!
+//! [path]                  # the path to a detecting sensor (`polbrdf detect`, docs/detection.md)
+//! visibility_km = 23      # or extinction_per_m = 1.7e-4 (one of the two), ...
+//! horizon_radiance = 60   # ... with horizon_radiance (W·m⁻²·sr⁻¹·µm⁻¹) or air_temperature_k;
+//! table = "path.csv"      # or instead a CSV with columns range_m,transmittance,path_radiance
 //! ```
 //!
 //! A `[sun]` by `date_time` must be above the horizon at that instant (an error naming
@@ -74,6 +79,8 @@ use crate::csv_io::{line_of, read_text, toml_message};
 use crate::csv_io::{read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_name, show};
 use crate::error::{Error, Result};
 use crate::material::load_material;
+use polbrdf::analysis::detection::path::KOSCHMIEDER;
+use polbrdf::analysis::detection::{Horizon, PathSpec};
 use polbrdf::analysis::scene::Sun;
 use polbrdf::analysis::sun_position::{Site, SunTime};
 use polbrdf::analysis::thermal::temperature;
@@ -111,6 +118,8 @@ pub struct Scene {
     /// `[sun]`'s date, time and place when it gives `date_time` (`thermal.sun` then holds the
     /// sun they place); `None` when the sun is given by its angles, or not at all.
     pub sun_time: Option<SunTime>,
+    /// `[path]`: the path to a detecting sensor (`polbrdf detect`); `None` when not given.
+    pub air_path: Option<PathSpec>,
     /// Every file the scene names, as resolved (band, sky table, sky profile, material files
     /// and the index files these name): inputs an output must not replace.
     pub files: Vec<PathBuf>,
@@ -329,6 +338,36 @@ const KEYS: &[Key] = &[
         "atmosphere.path_radiance",
         Kind::Number,
         "the path spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹",
+    ),
+    key(
+        "path",
+        Kind::Table,
+        "the path to a detecting sensor (`polbrdf detect`)",
+    ),
+    key(
+        "path.extinction_per_m",
+        Kind::Number,
+        "the extinction coefficient, m⁻¹",
+    ),
+    key(
+        "path.visibility_km",
+        Kind::Number,
+        "the meteorological visibility, km (Koschmieder: β = 3.912/V)",
+    ),
+    key(
+        "path.horizon_radiance",
+        Kind::Number,
+        "the horizon spectral radiance, W·m⁻²·sr⁻¹·µm⁻¹",
+    ),
+    key(
+        "path.air_temperature_k",
+        Kind::Number,
+        "the air temperature, K (horizon radiance B(T_air))",
+    ),
+    key(
+        "path.table",
+        Kind::Text,
+        "the path of a CSV file with columns range_m,transmittance,path_radiance",
     ),
 ];
 
@@ -1198,6 +1237,74 @@ fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
     }
 }
 
+/// `[path]` (docs/detection.md): `table`, or one of `extinction_per_m` and `visibility_km`
+/// with one of `horizon_radiance` and `air_temperature_k`.
+fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
+    if !doc.has("path") {
+        return Ok(None);
+    }
+    let exclusive = |a: &str, b: &str| -> Result<()> {
+        if doc.has(a) && doc.has(b) {
+            return Err(doc.error(
+                b,
+                format!("give either `{}` or `{}`, not both", split(a).1, split(b).1),
+            ));
+        }
+        Ok(())
+    };
+    if doc.has("path.table") {
+        for k in [
+            "path.extinction_per_m",
+            "path.visibility_km",
+            "path.horizon_radiance",
+            "path.air_temperature_k",
+        ] {
+            exclusive("path.table", k)?;
+        }
+        let table = doc.read_file("path.table", crate::detection_csv::read_path_csv)?;
+        return Ok(table.map(PathSpec::Table));
+    }
+    exclusive("path.extinction_per_m", "path.visibility_km")?;
+    exclusive("path.horizon_radiance", "path.air_temperature_k")?;
+    let extinction_per_m = match (
+        doc.number("path.extinction_per_m"),
+        doc.number("path.visibility_km"),
+    ) {
+        (Some(b), _) if b.is_finite() && b >= 0.0 => b,
+        (Some(b), _) => {
+            return Err(doc.error(
+                "path.extinction_per_m",
+                format!("{}: must be finite and >= 0 (m⁻¹)", show(b)),
+            ))
+        }
+        (None, Some(v)) if v.is_finite() && v > 0.0 => KOSCHMIEDER / (v * 1e3),
+        (None, Some(v)) => {
+            return Err(doc.error(
+                "path.visibility_km",
+                format!("{}: must be finite and > 0 (km)", show(v)),
+            ))
+        }
+        (None, None) => {
+            return Err(doc.error(
+                "path",
+                "missing the extinction: give `extinction_per_m`, `visibility_km` or `table`",
+            ))
+        }
+    };
+    let horizon = match (doc.number("path.horizon_radiance"), doc.number("path.air_temperature_k")) {
+        (Some(l), _) if l.is_finite() && (0.0..=polbrdf::error::MAX_RADIOMETRIC).contains(&l) => Horizon::Radiance(l),
+        (Some(l), _) => return Err(doc.error("path.horizon_radiance", format!("{}: must be finite and >= 0 (W·m⁻²·sr⁻¹·µm⁻¹)", show(l)))),
+        (None, Some(t)) => Horizon::AirTemperature(
+            temperature("path.air_temperature_k", t).map_err(|e| doc.core_error(e))?,
+        ),
+        (None, None) => return Err(doc.error("path", "missing the horizon radiance: give `horizon_radiance` (visible) or `air_temperature_k` (thermal infrared)")),
+    };
+    Ok(Some(PathSpec::Homogeneous {
+        extinction_per_m,
+        horizon,
+    }))
+}
+
 /// Parses a scene file's text; `path` names it in error messages, and its folder is where
 /// relative file names (band, sky profile or table, materials) are found.
 ///
@@ -1224,6 +1331,7 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
     thermal.validate().map_err(|e| doc.core_error(e))?;
     let target = object(&doc, &TARGET)?;
     let background = object(&doc, &BACKGROUND)?;
+    let air_path = air_path(&doc)?;
     Ok(Scene {
         path: path.to_path_buf(),
         spectrum,
@@ -1231,6 +1339,7 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
         target,
         background,
         sun_time,
+        air_path,
         files: doc.files.take(),
     })
 }
@@ -1248,7 +1357,7 @@ pub fn read_scene_keys(path: &Path) -> Result<(Scene, Vec<(&'static str, SceneVa
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let text = &*crate::csv_io::lone_cr_to_lf(text);
     let doc = Doc::parse(text, path)?;
-    let files = ["band.response", "sky.file"];
+    let files = ["band.response", "sky.file", "path.table"];
     let materials = ["target.material", "background.material"];
     let keys = KEYS
         .iter()

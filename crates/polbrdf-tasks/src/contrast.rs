@@ -163,7 +163,7 @@ pub struct ContrastStudy {
 }
 
 /// Resolves a material: the request's, else the scene table's.
-fn material_of(
+pub(crate) fn material_of(
     arg: Option<&str>,
     field: &str,
     scene: Option<&polbrdf_io::SceneObject>,

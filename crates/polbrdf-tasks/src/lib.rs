@@ -14,6 +14,8 @@ pub mod albedo;
 pub mod check;
 pub mod contrast;
 mod contrast_json;
+pub mod detect;
+pub mod detect_out;
 pub mod emission;
 mod error;
 pub mod fit;

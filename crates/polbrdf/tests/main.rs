@@ -5,6 +5,7 @@ mod bounds;
 mod common;
 mod contrast;
 mod daylight;
+mod detection;
 mod directions;
 mod emission;
 mod golden;

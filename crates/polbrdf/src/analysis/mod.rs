@@ -3,12 +3,14 @@
 //! ([`check`]), target against background over the viewing hemisphere ([`contrast`]), bands of
 //! wavelengths ([`spectral`]), polarized thermal emission ([`emission`], by the facet-normal
 //! quadrature of [`facets`]), Planck's law ([`thermal`]), skies and the sky integral ([`sky`]),
-//! and the observed Stokes radiance of a scene ([`scene`]).
+//! the observed Stokes radiance of a scene ([`scene`]), and whether a sensor detects a target
+//! against its background and from how far ([`detection`]).
 //! Nothing below this layer imports it.
 
 pub mod albedo;
 pub mod check;
 pub mod contrast;
+pub mod detection;
 pub mod emission;
 pub mod facets;
 pub mod scene;

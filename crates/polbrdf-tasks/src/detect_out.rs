@@ -1,0 +1,175 @@
+//! The tables of a detection study, built once here for every adapter: `detect.csv` (one row
+//! per view and range), `best.json` (the views ranked by detection range) and the per-view
+//! arrays of the maps.
+
+use crate::detect::{DetectStudy, ViewResult};
+use crate::hemisphere::deg;
+use polbrdf::analysis::detection::{estimate, Detection, MaxRange, NoiseModel, Path};
+use serde_json::{json, Value};
+
+/// The columns of `detect.csv`.
+pub const COLUMNS: [&str; 15] = [
+    "theta_r_deg",
+    "phi_r_deg",
+    "range_m",
+    "pixels_on_target",
+    "snr_s0",
+    "snr_dolp",
+    "snr_combined",
+    "polarization_contrast",
+    "snr_polarization_contrast",
+    "d_prime",
+    "pd",
+    "feature",
+    "saturated",
+    "max_range_m",
+    "max_range_feature",
+];
+
+/// `"beyond"`, `"not detectable"`, or the range.
+pub fn max_range_text(m: Option<MaxRange>) -> String {
+    match m {
+        None => String::new(),
+        Some(MaxRange::Beyond) => "beyond".into(),
+        Some(MaxRange::NotDetectable) => "not detectable".into(),
+        Some(MaxRange::At { range_m, .. }) => polbrdf_io::csv_io::fmt_f64(range_m),
+    }
+}
+
+/// The detection range as a number: the range, `+∞` beyond the limit, NaN when not
+/// detectable or not searched (for arrays and maps).
+pub fn max_range_value(m: Option<MaxRange>) -> f64 {
+    match m {
+        Some(MaxRange::At { range_m, .. }) => range_m,
+        Some(MaxRange::Beyond) => f64::INFINITY,
+        _ => f64::NAN,
+    }
+}
+
+/// The polarization contrast between the two estimates and its SNR (NaN where undefined).
+fn polarization_contrast(d: &Detection) -> (f64, f64) {
+    estimate::polarization_contrast(&d.target, &d.background).map_or((f64::NAN, f64::NAN), |m| {
+        (m.mean, m.mean / m.variance.sqrt())
+    })
+}
+
+fn num(v: f64) -> Value {
+    serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
+}
+
+impl DetectStudy {
+    /// `detect.csv`: one row per view and range, the values of [`COLUMNS`] (docs/detection.md).
+    pub fn csv(&self) -> Vec<u8> {
+        let f = polbrdf_io::csv_io::fmt_f64;
+        let mut t = polbrdf_io::CsvTable::new(COLUMNS);
+        for v in &self.views {
+            for d in &v.at_ranges {
+                let (pc, snr_pc) = polarization_contrast(d);
+                let feature = match v.max_range {
+                    Some(MaxRange::At { feature, .. }) => feature.as_str(),
+                    _ => "",
+                };
+                t.fields([
+                    f(deg(v.theta_r)),
+                    f(deg(v.phi_r)),
+                    f(d.range_m),
+                    f(d.pixels),
+                    f(d.scores.s0),
+                    f(d.scores.dolp),
+                    f(d.scores.combined),
+                    f(pc),
+                    f(snr_pc),
+                    f(d.d_prime_n),
+                    f(d.pd),
+                    d.feature.as_str().to_string(),
+                    u8::from(d.saturated).to_string(),
+                    max_range_text(v.max_range),
+                    feature.to_string(),
+                ]);
+            }
+        }
+        t.into_bytes()
+    }
+
+    /// The views ranked by detection range: beyond the limit first, then by range, largest
+    /// first, then the views not detectable; ties in view order.
+    pub fn ranked(&self) -> Vec<&ViewResult> {
+        let key = |v: &ViewResult| match v.max_range {
+            Some(MaxRange::Beyond) => f64::INFINITY,
+            Some(MaxRange::At { range_m, .. }) => range_m,
+            _ => f64::NEG_INFINITY,
+        };
+        let mut views: Vec<&ViewResult> = self.views.iter().collect();
+        views.sort_by(|a, b| key(b).total_cmp(&key(a)));
+        views
+    }
+
+    /// The path as JSON.
+    fn path_json(&self) -> Value {
+        let scene_path = self.scene.air_path.as_ref().map(|p| format!("{p:?}"));
+        match &self.detector.path {
+            Path::Homogeneous {
+                extinction_per_m,
+                horizon_radiance,
+            } => json!({"kind": "homogeneous", "extinction_per_m": num(*extinction_per_m),
+                "horizon_radiance_band": num(*horizon_radiance), "given": scene_path}),
+            Path::Table(t) => json!({"kind": "table", "rows": t.rows().count(),
+                "max_range_m": num(self.detector.path.max_range().unwrap_or(f64::NAN))}),
+        }
+    }
+
+    /// `best.json`: the setup, and every view ranked by detection range with `max_range_m`
+    /// (a number, `"beyond"` or `"not detectable"`) and the detecting feature.
+    pub fn best_json(&self) -> Value {
+        let entry = |v: &ViewResult| {
+            let (range, feature) = match v.max_range {
+                Some(MaxRange::At { range_m, feature }) => (num(range_m), json!(feature.as_str())),
+                other => (json!(max_range_text(other)), Value::Null),
+            };
+            json!({"theta_r_deg": num(deg(v.theta_r)), "phi_r_deg": num(deg(v.phi_r)),
+                   "max_range_m": range, "feature": feature})
+        };
+        let ranked: Vec<Value> = self.ranked().into_iter().map(entry).collect();
+        let c = &self.detector.criteria;
+        let noise = match self.detector.sensor.noise {
+            NoiseModel::PhotonCounting(p) => json!({"model": "photon-counting",
+                "electrons_per_radiance": num(p.electrons_per_radiance()),
+                "gain_e_per_count": num(p.gain_e_per_count)}),
+            NoiseModel::Nel { nel } => json!({"model": "nel", "nel": num(nel)}),
+        };
+        json!({
+            "best": ranked.first().cloned(),
+            "views": ranked,
+            "scene": self.scene.path.display().to_string(),
+            "sensor": {"file": self.sensor.path.display().to_string(),
+                       "name": self.sensor.spec.name, "noise": noise,
+                       "ifov_rad": num(self.detector.sensor.ifov_rad),
+                       "frames": self.detector.sensor.frames},
+            "target": self.target.name,
+            "background": self.background.name,
+            "path": self.path_json(),
+            "criteria": {"pfa": num(c.pfa), "pd": num(c.pd_required),
+                         "required_d_prime": num(c.required_d_prime()),
+                         "range_limit_m": num(c.range_limit_m),
+                         "area_m2": num(self.detector.area_m2),
+                         "features": c.features.iter().map(|f| f.as_str()).collect::<Vec<_>>()},
+            "ranges_m": self.ranges_m.iter().map(|r| num(*r)).collect::<Vec<_>>(),
+        })
+    }
+
+    /// Per view: the detection range ([`max_range_value`]).
+    pub fn max_ranges(&self) -> Vec<f64> {
+        self.views
+            .iter()
+            .map(|v| max_range_value(v.max_range))
+            .collect()
+    }
+
+    /// Per view: `P_d` at the `k`-th row range.
+    pub fn pd_at(&self, k: usize) -> Vec<f64> {
+        self.views
+            .iter()
+            .map(|v| v.at_ranges.get(k).map_or(f64::NAN, |d| d.pd))
+            .collect()
+    }
+}
