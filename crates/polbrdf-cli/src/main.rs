@@ -9,6 +9,7 @@ mod albedo;
 mod bench;
 mod check;
 mod contrast;
+mod daytime;
 mod emission;
 mod error;
 mod eval;
@@ -189,6 +190,11 @@ enum Command {
     /// The sun's position at a date, time and place (NREL SPA, ±0.0003°): zenith angle,
     /// compass azimuth (from north toward east) and the azimuth φ in the surface frame, as JSON.
     Sun(sun::Args),
+    /// A scene whose sun is placed by date, time and place, swept through the local times of
+    /// a day: writes into --out daytime.csv (per time: the sun, the best view's and a fixed
+    /// view's ΔDoLP and polarization contrast, and with --sensor their detection ranges) and
+    /// daytime.png/svg (against local time).
+    Daytime(daytime::Args),
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -303,6 +309,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Spectrum(args) => sweep::run(&args),
         Command::Export(args) => export::run(&args),
         Command::Sun(args) => sun::run(&args),
+        Command::Daytime(args) => daytime::run(&args),
     }
 }
 
@@ -438,6 +445,7 @@ mod tests {
             ("spectrum", "out") => &["spectrum", "--material", "{m}", "--out", "{X}"],
             ("lut", "out") => &["lut", "--config", "{m}", "--out", "{X}"],
             ("export", "out") => &["export", "--material", "{m}", "--out", "{X}"],
+            ("daytime", "out") => &["daytime", "--scene", "{s}", "--out", "{X}"],
             _ => return None,
         };
         Some(v.to_vec())

@@ -14,6 +14,7 @@ pub mod albedo;
 pub mod check;
 pub mod contrast;
 mod contrast_json;
+pub mod daytime;
 pub mod detect;
 pub mod detect_out;
 pub mod emission;
