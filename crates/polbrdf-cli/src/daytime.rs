@@ -119,7 +119,12 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
                 _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
             },
         },
-        rank: RankRequest::default(),
+        // The best view is the best grid node: refining it costs a sky integral per trial
+        // view under a clear sky, at every time.
+        rank: RankRequest {
+            refine: false,
+            ..RankRequest::default()
+        },
         fixed_view_deg: match pair(&args.fixed_view_deg, "--fixed-view-deg", "THETA,PHI")?[..] {
             [a, b] => (a, b),
             _ => {

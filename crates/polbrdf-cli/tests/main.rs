@@ -9,6 +9,7 @@ mod bench;
 mod common;
 mod contrast;
 mod daylight;
+mod daytime;
 mod emission;
 mod eval;
 mod fit;
