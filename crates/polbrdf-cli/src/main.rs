@@ -10,6 +10,7 @@ mod bench;
 mod check;
 mod contrast;
 mod daytime;
+mod detect;
 mod emission;
 mod error;
 mod eval;
@@ -126,6 +127,13 @@ enum Command {
     /// and background, ΔDoLP, the intensity ratio, the AoLP difference and the polarization
     /// contrast, with overview.png/svg.
     Contrast(contrast::Args),
+    /// Detection: will a polarization sensor see the target on its background, from which
+    /// view, by which feature (S0, DoLP or both), and out to what range (docs/detection.md).
+    ///
+    /// Writes into --out: detect.csv (one row per view and range), best.json (the views ranked
+    /// by detection range) and, on a grid, polar maps (PNG and SVG) of the detection range and
+    /// of P_d at the first --ranges-m.
+    Detect(detect::Args),
     /// Directional–hemispherical reflectance (albedo) at a set of incidence angles; values
     /// above 1 (energy created by the parameters) are flagged.
     Albedo(albedo::Args),
@@ -300,6 +308,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
         } => check::run(&material, grid_deg, &spectral),
         Command::Materials { show } => materials::run(show.as_deref()),
         Command::Contrast(args) => contrast::run(&args),
+        Command::Detect(args) => detect::run(&args),
         Command::Albedo(args) => albedo::run(&args),
         Command::Emission(args) => emission::run(&args),
         Command::Radiance(args) => radiance::run(&args),
@@ -421,6 +430,9 @@ mod tests {
                 "30",
                 "--out",
                 "{X}",
+            ],
+            ("detect", "out") => &[
+                "detect", "--scene", "{s}", "--sensor", "{m}", "--out", "{X}",
             ],
             ("albedo", "output") => &["albedo", "--material", "{m}", "--output", "{X}"],
             ("emission", "output") => &["emission", "--material", "{m}", "--output", "{X}"],

@@ -82,6 +82,11 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("contrast", "scene", Role::Input),
     ("contrast", "band", Role::Input),
     ("contrast", "out", Role::Dir),
+    ("detect", "scene", Role::Input),
+    ("detect", "sensor", Role::Input),
+    ("detect", "target", Role::Input),
+    ("detect", "background", Role::Input),
+    ("detect", "out", Role::Dir),
     ("albedo", "material", Role::Input),
     ("albedo", "band", Role::Input),
     ("albedo", "output", Role::File),
@@ -131,6 +136,7 @@ fn named_inside(id: &str, path: &Path) -> Vec<PathBuf> {
     }
     match id {
         "scene" => polbrdf_io::read_scene(path).map_or_else(|_| Vec::new(), |s| s.files),
+        "sensor" => polbrdf_io::read_sensor(path).map_or_else(|_| Vec::new(), |s| s.files),
         "material" | "target" | "background" => path
             .to_str()
             .and_then(|arg| polbrdf_io::load_material(arg).ok())

@@ -228,13 +228,13 @@ fn views_of(views: &Views) -> TaskResult<ViewsRad> {
         }
         Views::List(list) => {
             if list.is_empty() {
-                return Err(TaskError::invalid("views", "no view listed"));
+                return Err(TaskError::invalid("theta_deg", "no view listed"));
             }
             let rad: Vec<(f64, f64)> = list
                 .iter()
                 .map(|(t, p)| (t.to_radians(), p.to_radians()))
                 .collect();
-            check_views(&rad).map_err(|e| TaskError::invalid("views", e.to_string()))?;
+            check_views(&rad).map_err(|e| TaskError::invalid("theta_deg", e.to_string()))?;
             Ok((rad, None))
         }
     }
@@ -245,7 +245,7 @@ fn check_ranges(request: &DetectRequest) -> TaskResult<()> {
     if request.ranges_m.is_empty() && !request.search {
         return Err(TaskError::usage(
             "ranges_m",
-            "give ranges, or a range search (`search`), or both",
+            "give ranges, or a range search, or both",
         ));
     }
     if let Some(r) = request
@@ -261,26 +261,55 @@ fn check_ranges(request: &DetectRequest) -> TaskResult<()> {
     Ok(())
 }
 
-/// The observers of the target and the background over the sensor's spectrum.
+/// How the scene is observed over the sensor's spectrum: over the band itself, or — when
+/// nothing in the scene depends on the wavelength (constant refractive indices, no thermal
+/// emission, no blackbody sky: the sun's and the sky's spectral radiances are constant across
+/// a band) — at the band's centre, the result scaled by `∫ weight dλ`, which is then exact and
+/// a band's quadrature nodes fewer times cheaper (docs/detection.md).
+fn observation(
+    scene: &Scene,
+    materials: [&NamedMaterial; 2],
+    spectrum: &Spectrum,
+) -> (Spectrum, f64) {
+    let flat = materials.iter().all(|m| !m.spec.is_spectral())
+        && scene.target.temperature_k.is_none()
+        && scene.background.temperature_k.is_none()
+        && !matches!(
+            scene.thermal.sky,
+            polbrdf::analysis::SkyModel::Thermal { .. }
+        );
+    match spectrum {
+        Spectrum::Band(band, _) if flat => {
+            let total: f64 = spectrum.integral_nodes(&[]).iter().map(|n| n.1).sum();
+            let (lo, hi) = band.range();
+            (Spectrum::Wavelength(0.5 * (lo + hi)), total)
+        }
+        _ => (spectrum.clone(), 1.0),
+    }
+}
+
+/// The observers of the target and the background over the sensor's spectrum, and the factor
+/// their observations are scaled by ([`observation`]).
 fn observers(
     request: &DetectRequest,
     scene: &Scene,
     spectrum: &Spectrum,
-) -> TaskResult<(NamedMaterial, NamedMaterial, Observer, Observer)> {
+) -> TaskResult<(NamedMaterial, NamedMaterial, Observer, Observer, f64)> {
     let target = material_of(request.target.as_deref(), "target", Some(&scene.target))?;
     let background = material_of(
         request.background.as_deref(),
         "background",
         Some(&scene.background),
     )?;
+    let (spectrum, scale) = observation(scene, [&target, &background], spectrum);
     let observe = |m: &NamedMaterial, t: Option<f64>| {
         let thermal = scene.thermal.with_surface_temperature(t);
-        Observer::new(&m.spec, &thermal, spectrum)
+        Observer::new(&m.spec, &thermal, &spectrum)
             .map_err(|e| TaskError::invalid(&m.field, format!("{}: {e}", m.source)))
     };
     let ot = observe(&target, scene.target.temperature_k)?;
     let ob = observe(&background, scene.background.temperature_k)?;
-    Ok((target, background, ot, ob))
+    Ok((target, background, ot, ob, scale))
 }
 
 /// The ranges of a view's rows: the request's; without them (a search only), the view's
@@ -320,7 +349,7 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             ));
         }
     }
-    let (target, background, ot, ob) = observers(request, &scene, &spectrum)?;
+    let (target, background, ot, ob, scale) = observers(request, &scene, &spectrum)?;
     let quality = if grid.is_some() {
         Quality::Map
     } else {
@@ -329,21 +358,23 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
     let st = ot.observe_with(&dirs, quality);
     let sb = ob.observe_with(&dirs, quality);
     let mut views = Vec::with_capacity(dirs.len());
+    let scaled = |s: &Stokes| Stokes(s.0.map(|x| x * scale));
     for (t, b) in st.iter().zip(&sb) {
+        let (ts, bs) = (scaled(&t.stokes), scaled(&b.stokes));
         let max_range = if request.search {
-            Some(detector.max_range(&t.stokes, &b.stokes, t.theta_r)?)
+            Some(detector.max_range(&ts, &bs, t.theta_r)?)
         } else {
             None
         };
         let at_ranges = row_ranges(&request.ranges_m, max_range, request.range_limit_m)
             .into_iter()
-            .map(|r| detector.detect(&t.stokes, &b.stokes, t.theta_r, r))
+            .map(|r| detector.detect(&ts, &bs, t.theta_r, r))
             .collect::<Result<Vec<_>, _>>()?;
         views.push(ViewResult {
             theta_r: t.theta_r,
             phi_r: t.phi_r,
-            target: t.stokes,
-            background: b.stokes,
+            target: ts,
+            background: bs,
             at_ranges,
             max_range,
         });

@@ -138,3 +138,40 @@ fn the_request_is_checked_before_anything_is_computed() {
     let e = detect(&r).unwrap_err().to_string();
     assert!(e.contains("[atmosphere]") && e.contains("atm.toml"), "{e}");
 }
+
+#[test]
+fn a_wavelength_independent_scene_observed_at_the_band_centre_is_the_band_integral() {
+    // The shortcut of the task (docs/detection.md): constant indices, no emission, flat sun
+    // and sky — the band integral equals the centre's radiance times ∫ weight dλ.
+    use polbrdf::analysis::scene::Observer;
+    let scene = polbrdf_io::read_scene(&example("detect-daylight-scene.toml")).unwrap();
+    let sensor = polbrdf_io::read_sensor(&example(VISIBLE)).unwrap();
+    let polbrdf::Spectrum::Band(band, _) = &sensor.spectrum else {
+        panic!("a photon band")
+    };
+    let (lo, hi) = band.range();
+    let total: f64 = sensor
+        .spectrum
+        .integral_nodes(&[])
+        .iter()
+        .map(|n| n.1)
+        .sum();
+    let spec = scene.target.material.clone().unwrap().0;
+    let views = [(0.6, 2.0), (1.2, 0.3)];
+    let full = Observer::new(&spec, &scene.thermal, &sensor.spectrum)
+        .unwrap()
+        .observe(&views);
+    let centre = Observer::new(
+        &spec,
+        &scene.thermal,
+        &polbrdf::Spectrum::Wavelength(0.5 * (lo + hi)),
+    )
+    .unwrap()
+    .observe(&views);
+    for (f, c) in full.iter().zip(&centre) {
+        for k in 0..3 {
+            let (a, b) = (f.stokes.0[k], c.stokes.0[k] * total);
+            assert!((a - b).abs() <= 1e-12 * f.stokes.0[0], "{k}: {a} {b}");
+        }
+    }
+}

@@ -1,0 +1,275 @@
+//! `polbrdf detect`: will a sensor see the target on its background, from where, by which
+//! feature and how far (docs/detection.md) — `detect.csv`, `best.json` and polar maps of the
+//! detection range and of P_d, all computed by the task layer (`polbrdf_tasks::detect`).
+
+use crate::error::CliError;
+use crate::figures::{polar_grid, render_all, short, single};
+use crate::output::{write_all, OutputFile};
+use polbrdf::analysis::detection::Feature;
+use polbrdf_plot::{ColorScale, Colormap, PolarPanel};
+use polbrdf_tasks::detect::{detect, DetectRequest, DetectStudy, SceneSource, SensorSource, Views};
+use std::path::PathBuf;
+
+/// Options of `polbrdf detect`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The scene: target, background, sun, sky and [path] (TOML; docs/detection.md).
+    #[arg(long, value_name = "SCENE.toml")]
+    pub scene: PathBuf,
+    /// The sensor file (TOML; docs/detection.md).
+    #[arg(long, value_name = "SENSOR.toml")]
+    pub sensor: PathBuf,
+    /// The target material, replacing the scene's [target] material.
+    #[arg(long, value_name = "FILE.toml|PRESET")]
+    pub target: Option<String>,
+    /// The background material, replacing the scene's [background] material.
+    #[arg(long, value_name = "FILE.toml|PRESET")]
+    pub background: Option<String>,
+    /// Grid steps over the hemisphere, DTHETA or DTHETA,DPHI in degrees (default 1,2).
+    #[arg(long, value_name = "DTHETA[,DPHI]", conflicts_with_all = ["theta_deg", "phi_deg"])]
+    pub grid_deg: Option<String>,
+    /// Listed view zenith angle(s), degrees; with --phi-deg, every combination (no maps).
+    #[arg(
+        long,
+        value_name = "DEG",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub theta_deg: Vec<f64>,
+    /// Listed view azimuth(s), degrees (default 0).
+    #[arg(
+        long,
+        value_name = "DEG",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub phi_deg: Vec<f64>,
+    /// Ranges (m) at which every view is evaluated (rows of detect.csv; the P_d map is at the
+    /// first). Default 1000.
+    #[arg(
+        long,
+        value_name = "M",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub ranges_m: Vec<f64>,
+    /// Do not search each view's detection range.
+    #[arg(long)]
+    pub no_search: bool,
+    /// The largest range searched, m.
+    #[arg(
+        long,
+        value_name = "M",
+        default_value_t = 10_000.0,
+        allow_negative_numbers = true
+    )]
+    pub range_limit_m: f64,
+    /// The target's area, m² (a flat patch).
+    #[arg(
+        long,
+        value_name = "M2",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
+    pub area_m2: f64,
+    /// False-alarm probability.
+    #[arg(
+        long,
+        value_name = "P",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
+    pub pfa: f64,
+    /// Required probability of detection.
+    #[arg(
+        long,
+        value_name = "P",
+        default_value_t = 0.9,
+        allow_negative_numbers = true
+    )]
+    pub pd: f64,
+    /// Features the detector may use (s0, dolp, s0+dolp).
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        default_value = "s0,dolp,s0+dolp"
+    )]
+    pub features: Vec<String>,
+    /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
+    #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
+    pub sun_deg: Option<String>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR", default_value = "detect-out")]
+    pub out: PathBuf,
+}
+
+/// Comma-separated numbers of `option`, exactly `count` of them.
+fn pair(text: &str, option: &str) -> Result<(f64, f64), CliError> {
+    let v: Result<Vec<f64>, _> = text.split(',').map(|t| t.trim().parse::<f64>()).collect();
+    match v.as_deref() {
+        Ok([a, b]) => Ok((*a, *b)),
+        Ok([a]) if option == "--grid-deg" => Ok((*a, *a)),
+        _ => Err(CliError::Invalid(format!(
+            "{option} = {text:?}: expected two numbers separated by a comma"
+        ))),
+    }
+}
+
+impl Args {
+    fn request(&self) -> Result<DetectRequest, CliError> {
+        let views = if self.theta_deg.is_empty() {
+            if !self.phi_deg.is_empty() {
+                return Err(CliError::Usage("--phi-deg needs --theta-deg".into()));
+            }
+            Views::Grid(match &self.grid_deg {
+                Some(g) => pair(g, "--grid-deg")?,
+                None => polbrdf_tasks::hemisphere::DEFAULT_GRID_DEG,
+            })
+        } else {
+            let phis = if self.phi_deg.is_empty() {
+                vec![0.0]
+            } else {
+                self.phi_deg.clone()
+            };
+            crate::limits::at_most(
+                "--theta-deg × --phi-deg",
+                self.theta_deg.len() * phis.len(),
+                1_000_000,
+            )?;
+            Views::List(
+                self.theta_deg
+                    .iter()
+                    .flat_map(|t| phis.iter().map(move |p| (*t, *p)))
+                    .collect(),
+            )
+        };
+        let features = self
+            .features
+            .iter()
+            .map(|f| {
+                Feature::parse(f).ok_or_else(|| {
+                    CliError::Invalid(format!(
+                        "--features: unknown feature {f:?} (known: s0, dolp, s0+dolp)"
+                    ))
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        crate::limits::at_most("--ranges-m", self.ranges_m.len(), 1000)?;
+        Ok(DetectRequest {
+            scene: SceneSource::File(self.scene.clone()),
+            sensor: SensorSource::File(self.sensor.clone()),
+            target: self.target.clone(),
+            background: self.background.clone(),
+            views,
+            ranges_m: if self.ranges_m.is_empty() {
+                vec![1000.0]
+            } else {
+                self.ranges_m.clone()
+            },
+            search: !self.no_search,
+            range_limit_m: self.range_limit_m,
+            area_m2: self.area_m2,
+            pfa: self.pfa,
+            pd: self.pd,
+            features,
+            sun_deg: self
+                .sun_deg
+                .as_deref()
+                .map(|s| pair(s, "--sun-deg"))
+                .transpose()?,
+        })
+    }
+}
+
+/// Runs `polbrdf detect`.
+pub fn run(args: &Args) -> Result<(), CliError> {
+    let request = args.request()?;
+    let started = std::time::Instant::now();
+    let study = detect(&request)?;
+    let elapsed = started.elapsed();
+    for w in &study.warnings {
+        crate::note!("polbrdf detect: note: {w}");
+    }
+    let mut best = serde_json::to_string_pretty(&study.best_json()).expect("JSON of numbers");
+    best.push('\n');
+    let mut files: Vec<OutputFile> = vec![
+        ("detect.csv".into(), study.csv()),
+        ("best.json".into(), best.into_bytes()),
+    ];
+    figures(&mut files, &study)?;
+    let paths = write_all(&args.out, &files)?;
+    summary(&study, elapsed);
+    println!("Wrote {} files to {}", paths.len(), args.out.display());
+    Ok(())
+}
+
+fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
+    println!(
+        "polbrdf detect: target {}, background {}, sensor {}; {} views in {:.0} ms",
+        study.target.name,
+        study.background.name,
+        study.sensor.spec.name,
+        study.views.len(),
+        elapsed.as_secs_f64() * 1e3
+    );
+    for (k, v) in study.ranked().into_iter().take(5).enumerate() {
+        println!(
+            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}",
+            k + 1,
+            short(v.theta_r.to_degrees()),
+            short(v.phi_r.to_degrees()),
+            match polbrdf_tasks::detect_out::max_range_text(v.max_range).as_str() {
+                "" => "not searched".to_string(),
+                t if t.parse::<f64>().is_ok() => format!("{} m", short(t.parse().unwrap_or(0.0))),
+                t => t.to_string(),
+            }
+        );
+    }
+}
+
+/// The polar maps (grid views only): the detection range (beyond the limit drawn at the limit;
+/// not detectable: undefined grey) and P_d at the first row range.
+fn figures(files: &mut Vec<OutputFile>, study: &DetectStudy) -> Result<(), CliError> {
+    let Some(grid) = &study.grid else {
+        return Ok(());
+    };
+    let limit = study.detector.criteria.range_limit_m;
+    let mut figs = Vec::new();
+    if study.views.iter().any(|v| v.max_range.is_some()) {
+        let ranges: Vec<f64> = study
+            .max_ranges()
+            .into_iter()
+            .map(|r| r.min(limit))
+            .collect();
+        figs.push((
+            "max_range",
+            single(PolarPanel {
+                title: format!(
+                    "Detection range, m (P_d ≥ {}, P_fa = {}; grey: not detectable)",
+                    short(study.detector.criteria.pd_required),
+                    study.detector.criteria.pfa
+                ),
+                grid: polar_grid(grid, ranges)?,
+                scale: ColorScale::linear(Colormap::Viridis, 0.0, limit, "range (m)"),
+                marks: Vec::new(),
+            }),
+        ));
+    }
+    if let Some(r) = study.views.first().and_then(|v| v.at_ranges.first()) {
+        figs.push((
+            "pd",
+            single(PolarPanel {
+                title: format!(
+                    "P_d at {} m (P_fa = {})",
+                    short(r.range_m),
+                    study.detector.criteria.pfa
+                ),
+                grid: polar_grid(grid, study.pd_at(0))?,
+                scale: ColorScale::linear(Colormap::Viridis, 0.0, 1.0, "P_d"),
+                marks: Vec::new(),
+            }),
+        ));
+    }
+    render_all(files, &figs)
+}
