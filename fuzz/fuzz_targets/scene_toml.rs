@@ -1,6 +1,7 @@
 //! Scene files: any bytes either parse into a scene that validates, at a finite wavelength
 //! above 0 (or over a valid band), with its sun above the horizon (angles in radians, a Stokes
-//! vector of s0 = 1) and a clear sky only with a sun, or give an error naming the scene file
+//! vector of s0 = 1; one placed by date, time and place where SPA puts it) and a clear sky
+//! only with a sun, or give an error naming the scene file
 //! and saying what is wrong; never a panic.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
@@ -46,6 +47,12 @@ fuzz_target!(|data: &[u8]| {
                     s0 == 1.0 && s1.hypot(s2).hypot(s3) <= 1.0 + 1e-12,
                     "{sun:?}"
                 );
+            }
+            // A sun placed by date, time and place is where SPA puts it, above the horizon.
+            if let Some(t) = &scene.sun_time {
+                let sun = scene.thermal.sun.as_ref().expect("date_time places a sun");
+                let (_, dir) = t.surface_direction().expect("a parsed sun time is valid");
+                assert_eq!(dir, Some((sun.zenith, sun.azimuth)), "{t:?}");
             }
             match &scene.thermal.sky {
                 SkyModel::ClearSky {

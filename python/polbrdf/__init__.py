@@ -68,6 +68,7 @@ from .jobs import (
     read_pbsdf,
 )
 from .scene import Atmosphere, Band, PathToSensor, Scene, SceneObject, Sky, Sun, Surface
+from .sun import sun_position
 from .tasks import (
     AlbedoTable,
     ContrastStudy,
@@ -124,6 +125,7 @@ __all__ = [
     "stokes_aolp",
     "stokes_dolp",
     "stokes_dop",
+    "sun_position",
 ]
 
 try:

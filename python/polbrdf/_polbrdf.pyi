@@ -63,6 +63,7 @@ __all__ = [
     "read_measurements_task",
     "read_pbsdf_task",
     "read_scene_keys",
+    "sun_task",
     "vocabulary",
 ]
 
@@ -429,6 +430,17 @@ def fit_measurements_task(
     material: Material, path: str | PathLike[str], free: list[_Parameter], starts: int, seed: int
 ) -> FitResult:
     """The fit of a measurement CSV as ``polbrdf fit --data`` runs it."""
+def sun_task(
+    date_time: str,
+    latitude_deg: float,
+    longitude_deg: float,
+    elevation_m: float | None,
+    pressure_hpa: float | None,
+    temperature_c: float | None,
+    delta_t_s: float | None,
+    phi0_azimuth_deg: float | None,
+) -> str:
+    """The task layer's sun position (``polbrdf sun``): its JSON document."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

@@ -59,12 +59,28 @@ class SceneObject:
 
 @dataclass(frozen=True, kw_only=True)
 class Sun:
-    """``[sun]``: its zenith angle (degrees, in [0, 90)), azimuth (degrees, default 0), spectral
-    irradiance on a plane normal to the beam (W·m⁻²·µm⁻¹) and Stokes vector (normalized to
-    ``s0 = 1``; default unpolarized)."""
+    """``[sun]``: its position, spectral irradiance on a plane normal to the beam
+    (W·m⁻²·µm⁻¹) and Stokes vector (normalized to ``s0 = 1``; default unpolarized).
 
-    zenith_deg: float
+    The position is either the angles — ``zenith_deg`` (degrees, in [0, 90)) and
+    ``azimuth_deg`` (degrees, default 0) — or placed by NREL SPA (docs/sun-position.md) from
+    ``date_time`` (RFC 3339 with its UTC offset, ``"2026-06-21T12:00:00Z"``),
+    ``latitude_deg`` and ``longitude_deg``, optionally ``elevation_m`` (default 0),
+    ``pressure_hpa`` and ``temperature_c`` (refraction; default 1013.25 hPa, 15 °C; a pressure
+    of 0 turns it off), ``delta_t_s`` (TT − UT1; default estimated from the date) and
+    ``phi0_azimuth_deg`` (the compass azimuth of the surface's φ = 0 axis; default 0, north).
+    The two ways exclude each other (the reader says which key is extra)."""
+
+    zenith_deg: float | None = None
     azimuth_deg: float | None = None
+    date_time: str | None = None
+    latitude_deg: float | None = None
+    longitude_deg: float | None = None
+    elevation_m: float | None = None
+    pressure_hpa: float | None = None
+    temperature_c: float | None = None
+    delta_t_s: float | None = None
+    phi0_azimuth_deg: float | None = None
     irradiance: float
     stokes: Sequence[float] | None = None
 

@@ -68,6 +68,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::fit_pbsdf_task, m)?)?;
     m.add_function(wrap_pyfunction!(jobs::read_measurements_task, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_measurements_task, m)?)?;
+    m.add_function(wrap_pyfunction!(tasks::sun_task, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,

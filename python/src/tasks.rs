@@ -252,3 +252,33 @@ pub(crate) fn albedo_task<'py>(
         column(&|r| r.1.volume),
     ))
 }
+
+/// The sun's position (`polbrdf_tasks::sun`), as `polbrdf sun` prints it: the JSON document.
+#[pyfunction]
+#[pyo3(signature = (date_time, latitude_deg, longitude_deg, elevation_m, pressure_hpa,
+    temperature_c, delta_t_s, phi0_azimuth_deg))]
+#[allow(clippy::too_many_arguments)] // One per keyword of `polbrdf.sun_position`, all plain values.
+pub(crate) fn sun_task(
+    py: Python<'_>,
+    date_time: String,
+    latitude_deg: f64,
+    longitude_deg: f64,
+    elevation_m: Option<f64>,
+    pressure_hpa: Option<f64>,
+    temperature_c: Option<f64>,
+    delta_t_s: Option<f64>,
+    phi0_azimuth_deg: Option<f64>,
+) -> PyResult<String> {
+    let request = polbrdf_tasks::sun::SunRequest {
+        date_time,
+        latitude_deg,
+        longitude_deg,
+        elevation_m,
+        pressure_hpa,
+        temperature_c,
+        delta_t_s,
+        phi0_azimuth_deg,
+    };
+    let report = polbrdf_tasks::sun::sun(&request).map_err(|e| task_err(py, &e))?;
+    serde_json::to_string(&report.to_json()).map_err(|e| PyValueError::new_err(e.to_string()))
+}

@@ -10,6 +10,7 @@ mod bench;
 mod check;
 mod completions;
 mod contrast;
+mod daytime;
 mod detect;
 mod detect_frame;
 mod emission;
@@ -30,6 +31,7 @@ mod radiance;
 mod reproduce;
 mod residuals;
 mod spectrum;
+mod sun;
 mod sweep;
 mod view;
 
@@ -213,6 +215,14 @@ enum Command {
         #[arg(long, value_name = "PORT", default_value_t = 8737)]
         port: u16,
     },
+    /// The sun's position at a date, time and place (NREL SPA, ±0.0003°): zenith angle,
+    /// compass azimuth (from north toward east) and the azimuth φ in the surface frame, as JSON.
+    Sun(sun::Args),
+    /// A scene whose sun is placed by date, time and place, swept through the local times of
+    /// a day: writes into --out daytime.csv (per time: the sun, the best view's and a fixed
+    /// view's ΔDoLP and polarization contrast, and with --sensor their detection ranges) and
+    /// daytime.png/svg (against local time).
+    Daytime(daytime::Args),
     /// List the built-in materials.
     Materials {
         /// Print one preset as a material file (TOML) instead of the list.
@@ -337,6 +347,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
         Command::Lut { config, out } => lut::run(&config, &out),
         Command::Spectrum(args) => sweep::run(&args),
         Command::Export(args) => export::run(&args),
+        Command::Sun(args) => sun::run(&args),
+        Command::Daytime(args) => daytime::run(&args),
     }
 }
 
@@ -495,6 +507,7 @@ mod tests {
             ("lut", "out") => &["lut", "--config", "{m}", "--out", "{X}"],
             ("export", "out") => &["export", "--material", "{m}", "--out", "{X}"],
             ("check", "output") => &["check", "--material", "{m}", "--output", "{X}"],
+            ("daytime", "out") => &["daytime", "--scene", "{s}", "--out", "{X}"],
             _ => return None,
         };
         Some(v.to_vec())

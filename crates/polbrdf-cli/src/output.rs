@@ -109,6 +109,11 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("check", "output", Role::File),
     ("export", "material", Role::Input),
     ("export", "out", Role::File),
+    ("daytime", "scene", Role::Input),
+    ("daytime", "sensor", Role::Input),
+    ("daytime", "target", Role::Input),
+    ("daytime", "background", Role::Input),
+    ("daytime", "out", Role::Dir),
 ];
 
 /// The paths of `command`'s options of `role` given on its command line `m`.

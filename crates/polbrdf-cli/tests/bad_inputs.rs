@@ -397,36 +397,233 @@ fn eval_arrow(
 /// Arrow IPC inputs (feature `arrow`): malformed, truncated, nulls, unsupported types.
 #[cfg(feature = "arrow")]
 #[rustfmt::skip]
+/// `polbrdf sun` with `args`.
+fn sun(what: &'static str, args: &[&'static str], code: i32, says: &[&'static str]) -> Case {
+    let mut a = vec!["sun"];
+    a.extend_from_slice(args);
+    case(what, vec![], &a, code, says)
+}
+
+/// A `[sun]` placed by date, time and place (issue 37), and `polbrdf sun`.
+#[rustfmt::skip]
+fn sun_cases() -> Vec<Case> {
+    const PLACE: &str = "latitude_deg = 48.21\nlongitude_deg = 16.37\nirradiance = 1000\n";
+    let scene = |what, head: &str, code, says| radiance_scene(what, Box::leak(format!("wavelength_um = 0.55\n[sun]\n{head}{PLACE}").into_boxed_str()), vec![], code, says);
+    vec![
+        scene("sun date_time at noon (valid)", "date_time = \"2026-06-21T12:56:00+02:00\"\n", 0, &[]),
+        scene("sun date_time as a TOML date-time (valid)", "date_time = 2026-06-21T10:56:00Z\n", 0, &[]),
+        scene("sun date_time without offset", "date_time = \"2026-06-21T12:00:00\"\n", 3, &["s.toml:3", "`sun.date_time`", "has no UTC offset"]),
+        scene("sun date_time not a date", "date_time = \"noon\"\n", 3, &["s.toml:3", "`sun.date_time`", "RFC 3339"]),
+        scene("sun date_time 30 February", "date_time = \"2026-02-30T12:00:00Z\"\n", 3, &["s.toml:3", "`sun.date_time`", "2026-02-30"]),
+        scene("sun date_time at night", "date_time = \"2026-06-21T23:30:00+02:00\"\n", 3, &["s.toml:3", "`sun.date_time`", "not above the horizon", "UTC offset"]),
+        scene("sun date_time and zenith_deg", "date_time = \"2026-06-21T12:00:00Z\"\nzenith_deg = 30\n", 3, &["s.toml:4", "`sun.zenith_deg`", "not both"]),
+        radiance_scene("sun date_time without latitude", "wavelength_um = 0.55\n[sun]\ndate_time = \"2026-06-21T12:00:00Z\"\nlongitude_deg = 0\nirradiance = 1\n", vec![], 3, &["s.toml:2", "`sun`", "missing required key `latitude_deg`"]),
+        radiance_scene("sun latitude 91", "wavelength_um = 0.55\n[sun]\ndate_time = \"2026-06-21T12:00:00Z\"\nlatitude_deg = 91\nlongitude_deg = 0\nirradiance = 1\n", vec![], 3, &["s.toml:4", "`sun.latitude_deg`", "91", "[-90, 90]"]),
+        radiance_scene("sun place without date_time", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nlongitude_deg = 0\nirradiance = 1\n", vec![], 3, &["s.toml:4", "`sun.longitude_deg`", "give `date_time` too"]),
+        radiance_scene("sun temperature 500 C", "wavelength_um = 0.55\n[sun]\ndate_time = \"2026-06-21T12:00:00Z\"\nlatitude_deg = 0\nlongitude_deg = 0\ntemperature_c = 500\nirradiance = 1\n", vec![], 3, &["s.toml:6", "`sun.temperature_c`", "500", "[-100, 100]"]),
+        sun("sun: the published example (valid)", &["--date-time", "2003-10-17T12:30:30-07:00", "--latitude-deg", "39.742476", "--longitude-deg", "-105.1786"], 0, &[]),
+        sun("sun: no offset", &["--date-time", "2003-10-17T12:30:30", "--latitude-deg", "0", "--longitude-deg", "0"], 3, &["--date-time", "has no UTC offset"]),
+        sun("sun: latitude -91", &["--date-time", "2003-10-17T12:30:30Z", "--latitude-deg", "-91", "--longitude-deg", "0"], 3, &["--latitude-deg", "-91", "[-90, 90]"]),
+        sun("sun: longitude NaN", &["--date-time", "2003-10-17T12:30:30Z", "--latitude-deg", "0", "--longitude-deg", "NaN"], 3, &["--longitude-deg", "NaN"]),
+        sun("sun: pressure -1", &["--date-time", "2003-10-17T12:30:30Z", "--latitude-deg", "0", "--longitude-deg", "0", "--pressure-hpa", "-1"], 3, &["--pressure-hpa", "-1", "no refraction"]),
+        sun("sun: delta T inf", &["--date-time", "2003-10-17T12:30:30Z", "--latitude-deg", "0", "--longitude-deg", "0", "--delta-t-s", "inf"], 3, &["--delta-t-s", "inf"]),
+        sun("sun: year 5000 without delta T", &["--date-time", "5000-10-17T12:30:30Z", "--latitude-deg", "0", "--longitude-deg", "0"], 3, &["--date-time", "give `delta_t_s`"]),
+        sun("sun: no latitude", &["--date-time", "2003-10-17T12:30:30Z", "--longitude-deg", "0"], 2, &["--latitude-deg"]),
+    ]
+}
+
 fn arrow_cases() -> Vec<Case> {
     use crate::arrow::{arrow_bytes, geometry_arrow};
     use arrow_array::{ArrayRef, BooleanArray, Float64Array, StringArray};
     use std::sync::Arc;
     let good = geometry_arrow(vec![]);
     let f = |v: Vec<Option<f64>>| -> ArrayRef { Arc::new(Float64Array::from(v)) };
-    let angles = |t: Option<f64>, p: Option<f64>| vec![("theta_i_deg", f(vec![Some(30.0), t])), ("phi_i_deg", f(vec![Some(0.0), p])), ("theta_r_deg", f(vec![Some(30.0), Some(30.0)])), ("phi_r_deg", f(vec![Some(180.0), Some(180.0)]))];
+    let angles = |t: Option<f64>, p: Option<f64>| {
+        vec![
+            ("theta_i_deg", f(vec![Some(30.0), t])),
+            ("phi_i_deg", f(vec![Some(0.0), p])),
+            ("theta_r_deg", f(vec![Some(30.0), Some(30.0)])),
+            ("phi_r_deg", f(vec![Some(180.0), Some(180.0)])),
+        ]
+    };
     let stream = arrow_bytes(&angles(Some(30.0), Some(0.0)), true, 1);
     vec![
-        eval_arrow("arrow: not Arrow", "g.arrow", t("theta_i_deg,phi_i_deg\n"), 3, &["g.arrow", "Arrow IPC"]),
-        eval_arrow("arrow: empty file", "g.arrow", vec![], 3, &["g.arrow", "Arrow IPC"]),
-        eval_arrow("arrow: footer cut off", "g.arrow", good[..good.len() - 10].to_vec(), 3, &["g.arrow", "Arrow IPC"]),
-        eval_arrow("arrow: cut in half", "g.arrow", good[..good.len() / 2].to_vec(), 3, &["g.arrow", "Arrow IPC"]),
-        eval_arrow("arrow: stream cut in its second batch", "g.arrows", stream[..stream.len() - 30].to_vec(), 3, &["g.arrows", "Arrow IPC batch 2"]),
-        eval_arrow("arrow: stream as a file", "g.arrow", stream.clone(), 3, &["g.arrow", "Arrow IPC"]),
-        eval_arrow("arrow: null", "g.arrow", arrow_bytes(&angles(Some(30.0), None), false, 8), 3, &["g.arrow:2:", "`phi_i_deg`", "null"]),
-        eval_arrow("arrow: zenith NaN", "g.arrow", arrow_bytes(&angles(Some(f64::NAN), Some(0.0)), false, 8), 3, &["g.arrow:2:", "theta_i_deg"]),
-        eval_arrow("arrow: boolean column", "g.arrow", geometry_arrow(vec![("flag", Arc::new(BooleanArray::from(vec![true, false])))]), 3, &["g.arrow", "`flag`", "Boolean", "floats, integers and text"]),
-        eval_arrow("arrow: missing column", "g.arrow", arrow_bytes(&angles(Some(30.0), Some(0.0))[1..], false, 8), 3, &["g.arrow", "theta_i_deg"]),
-        eval_arrow("arrow: text angle", "g.arrows", arrow_bytes(&[("theta_i_deg", Arc::new(StringArray::from(vec!["30"])) as ArrayRef), ("phi_i_deg", f(vec![Some(0.0)])), ("theta_r_deg", f(vec![Some(30.0)])), ("phi_r_deg", f(vec![Some(180.0)]))], true, 8), 3, &["g.arrows:1:", "`theta_i_deg`", "must hold numbers"]),
-        eval_arrow("arrow: input column named brdf", "g.feather", geometry_arrow(vec![("brdf", f(vec![Some(1.0), Some(2.0)]))]), 3, &["g.feather", "`brdf`", "rename"]),
+        eval_arrow(
+            "arrow: not Arrow",
+            "g.arrow",
+            t("theta_i_deg,phi_i_deg\n"),
+            3,
+            &["g.arrow", "Arrow IPC"],
+        ),
+        eval_arrow(
+            "arrow: empty file",
+            "g.arrow",
+            vec![],
+            3,
+            &["g.arrow", "Arrow IPC"],
+        ),
+        eval_arrow(
+            "arrow: footer cut off",
+            "g.arrow",
+            good[..good.len() - 10].to_vec(),
+            3,
+            &["g.arrow", "Arrow IPC"],
+        ),
+        eval_arrow(
+            "arrow: cut in half",
+            "g.arrow",
+            good[..good.len() / 2].to_vec(),
+            3,
+            &["g.arrow", "Arrow IPC"],
+        ),
+        eval_arrow(
+            "arrow: stream cut in its second batch",
+            "g.arrows",
+            stream[..stream.len() - 30].to_vec(),
+            3,
+            &["g.arrows", "Arrow IPC batch 2"],
+        ),
+        eval_arrow(
+            "arrow: stream as a file",
+            "g.arrow",
+            stream.clone(),
+            3,
+            &["g.arrow", "Arrow IPC"],
+        ),
+        eval_arrow(
+            "arrow: null",
+            "g.arrow",
+            arrow_bytes(&angles(Some(30.0), None), false, 8),
+            3,
+            &["g.arrow:2:", "`phi_i_deg`", "null"],
+        ),
+        eval_arrow(
+            "arrow: zenith NaN",
+            "g.arrow",
+            arrow_bytes(&angles(Some(f64::NAN), Some(0.0)), false, 8),
+            3,
+            &["g.arrow:2:", "theta_i_deg"],
+        ),
+        eval_arrow(
+            "arrow: boolean column",
+            "g.arrow",
+            geometry_arrow(vec![(
+                "flag",
+                Arc::new(BooleanArray::from(vec![true, false])),
+            )]),
+            3,
+            &["g.arrow", "`flag`", "Boolean", "floats, integers and text"],
+        ),
+        eval_arrow(
+            "arrow: missing column",
+            "g.arrow",
+            arrow_bytes(&angles(Some(30.0), Some(0.0))[1..], false, 8),
+            3,
+            &["g.arrow", "theta_i_deg"],
+        ),
+        eval_arrow(
+            "arrow: text angle",
+            "g.arrows",
+            arrow_bytes(
+                &[
+                    (
+                        "theta_i_deg",
+                        Arc::new(StringArray::from(vec!["30"])) as ArrayRef,
+                    ),
+                    ("phi_i_deg", f(vec![Some(0.0)])),
+                    ("theta_r_deg", f(vec![Some(30.0)])),
+                    ("phi_r_deg", f(vec![Some(180.0)])),
+                ],
+                true,
+                8,
+            ),
+            3,
+            &["g.arrows:1:", "`theta_i_deg`", "must hold numbers"],
+        ),
+        eval_arrow(
+            "arrow: input column named brdf",
+            "g.feather",
+            geometry_arrow(vec![("brdf", f(vec![Some(1.0), Some(2.0)]))]),
+            3,
+            &["g.feather", "`brdf`", "rename"],
+        ),
         // Found by the arrow fuzz target: a footer block announcing 2⁵⁹ bytes (checked against the file's size before Arrow allocates it).
-        eval_arrow("arrow: a block beyond the file", "g.arrow", include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(), 3, &["g.arrow", "block 1", "lies outside the file"]),
-        eval_arrow("arrow: direction component NaN", "g.arrow", arrow_bytes(&[("w_i_x", f(vec![Some(0.0)])), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(f64::NAN)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], false, 8), 3, &["g.arrow:1:", "`w_r_x`", "finite"]),
-        eval_arrow("arrow: text direction column", "g.arrows", arrow_bytes(&[("w_i_x", Arc::new(StringArray::from(vec!["0"])) as ArrayRef), ("w_i_y", f(vec![Some(0.0)])), ("w_i_z", f(vec![Some(1.0)])), ("w_r_x", f(vec![Some(0.0)])), ("w_r_y", f(vec![Some(0.0)])), ("w_r_z", f(vec![Some(1.0)]))], true, 8), 3, &["g.arrows:1:", "`w_i_x`", "must hold numbers"]),
+        eval_arrow(
+            "arrow: a block beyond the file",
+            "g.arrow",
+            include_bytes!("data/arrow_block_beyond_file.arrow").to_vec(),
+            3,
+            &["g.arrow", "block 1", "lies outside the file"],
+        ),
+        eval_arrow(
+            "arrow: direction component NaN",
+            "g.arrow",
+            arrow_bytes(
+                &[
+                    ("w_i_x", f(vec![Some(0.0)])),
+                    ("w_i_y", f(vec![Some(0.0)])),
+                    ("w_i_z", f(vec![Some(1.0)])),
+                    ("w_r_x", f(vec![Some(f64::NAN)])),
+                    ("w_r_y", f(vec![Some(0.0)])),
+                    ("w_r_z", f(vec![Some(1.0)])),
+                ],
+                false,
+                8,
+            ),
+            3,
+            &["g.arrow:1:", "`w_r_x`", "finite"],
+        ),
+        eval_arrow(
+            "arrow: text direction column",
+            "g.arrows",
+            arrow_bytes(
+                &[
+                    ("w_i_x", Arc::new(StringArray::from(vec!["0"])) as ArrayRef),
+                    ("w_i_y", f(vec![Some(0.0)])),
+                    ("w_i_z", f(vec![Some(1.0)])),
+                    ("w_r_x", f(vec![Some(0.0)])),
+                    ("w_r_y", f(vec![Some(0.0)])),
+                    ("w_r_z", f(vec![Some(1.0)])),
+                ],
+                true,
+                8,
+            ),
+            3,
+            &["g.arrows:1:", "`w_i_x`", "must hold numbers"],
+        ),
         // Issue 35: pandas' Feather files are compressed (LZ4 by default): refused with the
         // command that re-saves them (it named a Cargo feature).
-        eval_arrow("arrow: pandas' LZ4 Feather", "g.feather", include_bytes!("data/pandas_lz4.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (LZ4)", "compression=\"uncompressed\""]),
-        eval_arrow("arrow: pandas' ZSTD Feather", "g.feather", include_bytes!("data/pandas_zstd.feather").to_vec(), 3, &["g.feather", "Arrow IPC batch 1", "compressed (ZSTD)", "compression=\"uncompressed\""]),
-        eval_arrow("arrow: pandas' uncompressed Feather (valid)", "g.feather", include_bytes!("data/pandas_uncompressed.feather").to_vec(), 0, &[]),
+        eval_arrow(
+            "arrow: pandas' LZ4 Feather",
+            "g.feather",
+            include_bytes!("data/pandas_lz4.feather").to_vec(),
+            3,
+            &[
+                "g.feather",
+                "Arrow IPC batch 1",
+                "compressed (LZ4)",
+                "compression=\"uncompressed\"",
+            ],
+        ),
+        eval_arrow(
+            "arrow: pandas' ZSTD Feather",
+            "g.feather",
+            include_bytes!("data/pandas_zstd.feather").to_vec(),
+            3,
+            &[
+                "g.feather",
+                "Arrow IPC batch 1",
+                "compressed (ZSTD)",
+                "compression=\"uncompressed\"",
+            ],
+        ),
+        eval_arrow(
+            "arrow: pandas' uncompressed Feather (valid)",
+            "g.feather",
+            include_bytes!("data/pandas_uncompressed.feather").to_vec(),
+            0,
+            &[],
+        ),
         eval_arrow("arrow: valid", "g.feather", good, 0, &[]),
     ]
 }
@@ -454,6 +651,7 @@ fn sparse_sky_table(n: usize) -> Vec<u8> {
 
 fn table() -> Vec<Case> {
     let mut cases = table_common();
+    cases.extend(sun_cases());
     #[cfg(feature = "arrow")]
     cases.extend(arrow_cases());
     cases
@@ -612,7 +810,7 @@ fn table_common() -> Vec<Case> {
         radiance_scene("sky profile file missing", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"nosky.csv\"\n", vec![], 3, &["s.toml:4", "`sky.file`", "nosky.csv", "cannot read"]),
         radiance_scene("sky profile malformed", "wavelength_um = 10\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n", vec![("sky.csv", t("zenith_deg,radiance\n0,1\n45,x\n"))], 3, &["s.toml:4", "`sky.file`", "sky.csv:3", "`radiance`"]),
         // Scene files: the sun, the clear sky and sky tables.
-        radiance_scene("scene unknown key in [sun]", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\nelevation_deg = 60\n", vec![], 3, &["s.toml:5", "`sun.elevation_deg`", "unknown key in [sun]", "zenith_deg, azimuth_deg, irradiance, stokes"]),
+        radiance_scene("scene unknown key in [sun]", "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\nelevation_deg = 60\n", vec![], 3, &["s.toml:5", "`sun.elevation_deg`", "unknown key in [sun]", "zenith_deg, azimuth_deg, date_time, latitude_deg, longitude_deg, elevation_m, pressure_hpa, temperature_c, delta_t_s, phi0_azimuth_deg, irradiance, stokes"]),
         radiance_scene("sun on the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 90\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 90", "above the horizon", "[0, 90)"]),
         radiance_scene("sun below the horizon", "wavelength_um = 0.55\n[sun]\nzenith_deg = 95\nirradiance = 1000\n", vec![], 3, &["s.toml:3", "`sun.zenith_deg`", "= 95", "above the horizon"]),
         // Issue 35 item 7: the documented bound panicked ("internal error", exit 1).

@@ -10,6 +10,7 @@ mod common;
 mod contrast;
 mod daylight;
 mod detect_frame;
+mod daytime;
 mod emission;
 mod eval;
 mod fit;

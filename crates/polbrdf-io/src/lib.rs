@@ -8,6 +8,7 @@
 #[cfg(feature = "arrow")]
 pub mod arrow;
 pub mod csv_io;
+pub mod date_time;
 pub mod detection_csv;
 pub mod error;
 pub mod library;

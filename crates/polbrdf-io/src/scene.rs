@@ -20,8 +20,18 @@
 //! [background]            # the same keys as [target]
 //!
 //! [sun]                   # absent: no sun
-//! zenith_deg = 40         # required, in [0, 90): the sun above the horizon
-//! azimuth_deg = 0         # default 0
+//! zenith_deg = 40         # in [0, 90): the sun above the horizon; required unless date_time
+//! azimuth_deg = 0         # default 0 (the surface frame's φ of the sun)
+//! # ... or, instead of zenith_deg and azimuth_deg, the sun placed by NREL SPA
+//! # (polbrdf::analysis::sun_position, docs/sun-position.md):
+//! date_time = "2026-06-21T12:00:00Z"  # RFC 3339 with its UTC offset (string or TOML date-time)
+//! latitude_deg = 48.21    # required with date_time, in [-90, 90], north positive
+//! longitude_deg = 16.37   # required with date_time, in [-180, 180], east positive
+//! elevation_m = 0         # default 0
+//! pressure_hpa = 1013.25  # default 1013.25; 0: no refraction
+//! temperature_c = 15      # default 15
+//! delta_t_s = 69          # TT − UT1; default estimated from the date
+//! phi0_azimuth_deg = 0    # compass azimuth of the surface's φ = 0 axis; default 0 (north)
 //! irradiance = 1000       # required: W·m⁻²·µm⁻¹ on a plane normal to the beam (finite, ≥ 0)
 //! stokes = [1, 0, 0, 0]   # default unpolarized; any s0 > 0, DoP ≤ 1, normalized to s0 = 1
 //!
@@ -44,6 +54,10 @@
 //! horizon_radiance = 60   # ... with horizon_radiance (W·m⁻²·sr⁻¹·µm⁻¹) or air_temperature_k;
 //! table = "path.csv"      # or instead a CSV with columns range_m,transmittance,path_radiance
 //! ```
+//!
+//! A `[sun]` by `date_time` must be above the horizon at that instant (an error naming
+//! `sun.date_time` otherwise); the keys of the two ways (angles, date and place) exclude each
+//! other.
 //!
 //! A sky model takes only its own keys (`radiance` with `model = "thermal"` is an error naming
 //! the model it belongs to) and requires them (`dop_max` has a default); `cie-clear` requires
@@ -68,6 +82,7 @@ use crate::material::load_material;
 use polbrdf::analysis::detection::path::KOSCHMIEDER;
 use polbrdf::analysis::detection::{Horizon, PathSpec};
 use polbrdf::analysis::scene::Sun;
+use polbrdf::analysis::sun_position::{Site, SunTime};
 use polbrdf::analysis::thermal::temperature;
 use polbrdf::analysis::{Atmosphere, SkyModel, ThermalScene};
 use polbrdf::{MaterialSpec, Spectrum, Stokes};
@@ -100,6 +115,9 @@ pub struct Scene {
     pub target: SceneObject,
     /// `[background]`.
     pub background: SceneObject,
+    /// `[sun]`'s date, time and place when it gives `date_time` (`thermal.sun` then holds the
+    /// sun they place); `None` when the sun is given by its angles, or not at all.
+    pub sun_time: Option<SunTime>,
     /// `[path]`: the path to a detecting sensor (`polbrdf detect`); `None` when not given.
     pub air_path: Option<PathSpec>,
     /// Every file the scene names, as resolved (band, sky table, sky profile, material files
@@ -114,6 +132,8 @@ enum Kind {
     /// An array of numbers (of any length: the key's reader checks it).
     Numbers,
     Text,
+    /// A date-time: a TOML date-time or a string holding one.
+    DateTime,
     Table,
 }
 
@@ -123,6 +143,7 @@ impl Kind {
             Kind::Number => "a number",
             Kind::Numbers => "an array of numbers",
             Kind::Text => "a string",
+            Kind::DateTime => "a date-time",
             Kind::Table => "a table",
         }
     }
@@ -134,6 +155,7 @@ impl Kind {
                 (self, value),
                 (Kind::Number, Value::Float(_) | Value::Integer(_))
                     | (Kind::Text, Value::String(_))
+                    | (Kind::DateTime, Value::String(_) | Value::Datetime(_))
                     | (Kind::Table, Value::Table(_))
             ),
         }
@@ -211,7 +233,8 @@ const KEYS: &[Key] = &[
     key(
         "sun",
         Kind::Table,
-        "the sun: [sun] with zenith_deg and irradiance",
+        "the sun: [sun] with irradiance, and zenith_deg or date_time with latitude_deg and \
+         longitude_deg",
     ),
     key(
         "sun.zenith_deg",
@@ -222,6 +245,46 @@ const KEYS: &[Key] = &[
         "sun.azimuth_deg",
         Kind::Number,
         "the sun's azimuth, degrees",
+    ),
+    key(
+        "sun.date_time",
+        Kind::DateTime,
+        "the date and time with its UTC offset, e.g. 2026-06-21T12:00:00Z",
+    ),
+    key(
+        "sun.latitude_deg",
+        Kind::Number,
+        "the latitude, degrees, in [-90, 90] (north positive)",
+    ),
+    key(
+        "sun.longitude_deg",
+        Kind::Number,
+        "the longitude, degrees, in [-180, 180] (east positive)",
+    ),
+    key(
+        "sun.elevation_m",
+        Kind::Number,
+        "the height above sea level, m",
+    ),
+    key(
+        "sun.pressure_hpa",
+        Kind::Number,
+        "the air pressure for refraction, hPa (0: no refraction)",
+    ),
+    key(
+        "sun.temperature_c",
+        Kind::Number,
+        "the air temperature for refraction, °C",
+    ),
+    key(
+        "sun.delta_t_s",
+        Kind::Number,
+        "ΔT = TT − UT1, s (default: estimated from the date)",
+    ),
+    key(
+        "sun.phi0_azimuth_deg",
+        Kind::Number,
+        "the compass azimuth (from north toward east) of the surface's φ = 0 axis, degrees",
     ),
     key(
         "sun.irradiance",
@@ -855,7 +918,27 @@ fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
     if !doc.has("sun") {
         return Ok(None);
     }
-    let zenith_deg = doc.required_in_table("sun.zenith_deg")?;
+    if let Some(time) = sun_time(doc)? {
+        return sun_from_time(doc, &time).map(Some);
+    }
+    let zenith_deg = doc
+        .required_in_table("sun.zenith_deg")
+        .map_err(|e| match e {
+            Error::Field {
+                path,
+                line,
+                field,
+                message,
+            } => Error::Field {
+                path,
+                line,
+                field,
+                message: format!(
+                "{message}; or place the sun by `date_time`, `latitude_deg` and `longitude_deg`"
+            ),
+            },
+            e => e,
+        })?;
     let irradiance = doc.required_in_table("sun.irradiance")?;
     let azimuth_deg = doc
         .number("sun.azimuth_deg")
@@ -892,6 +975,116 @@ fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
         irradiance,
         stokes,
     }))
+}
+
+/// The keys of `[sun]` that give the sun by date, time and place (`date_time` first).
+const SUN_TIME_KEYS: [&str; 8] = [
+    "sun.date_time",
+    "sun.latitude_deg",
+    "sun.longitude_deg",
+    "sun.elevation_m",
+    "sun.pressure_hpa",
+    "sun.temperature_c",
+    "sun.delta_t_s",
+    "sun.phi0_azimuth_deg",
+];
+
+/// `[sun]`'s date, time and place, when `date_time` is given (`None` otherwise): every key
+/// of the two ways of giving the sun's position is checked to belong to the one used.
+fn sun_time(doc: &Doc<'_>) -> Result<Option<SunTime>> {
+    let by_angles = ["sun.zenith_deg", "sun.azimuth_deg"];
+    let Some((_, date_time)) = doc.found.get("sun.date_time") else {
+        if let Some(key) = SUN_TIME_KEYS.iter().find(|k| doc.has(k)) {
+            return Err(doc.error(
+                key,
+                format!(
+                    "`{}` places the sun by date, time and place: give `date_time` too (or \
+                     remove it and give zenith_deg)",
+                    split(key).1
+                ),
+            ));
+        }
+        return Ok(None);
+    };
+    if let Some(key) = by_angles.iter().find(|k| doc.has(k)) {
+        return Err(doc.error(
+            key,
+            format!(
+                "give either `{}` (the sun's angles) or `date_time` (line {}; the angles from \
+                 date, time and place), not both",
+                split(key).1,
+                doc.line("sun.date_time")
+            ),
+        ));
+    }
+    let time = match date_time {
+        Value::Datetime(d) => crate::date_time::from_toml(d),
+        Value::String(t) => crate::date_time::parse_date_time(t),
+        _ => unreachable!("checked against Kind::DateTime"),
+    }
+    .map_err(|m| doc.error("sun.date_time", m))?;
+    let latitude_deg = doc.required_in_table("sun.latitude_deg")?;
+    let longitude_deg = doc.required_in_table("sun.longitude_deg")?;
+    let d = Site::at(latitude_deg, longitude_deg);
+    let site = Site {
+        elevation_m: doc.number("sun.elevation_m").unwrap_or(d.elevation_m),
+        pressure_hpa: doc.number("sun.pressure_hpa").unwrap_or(d.pressure_hpa),
+        temperature_c: doc.number("sun.temperature_c").unwrap_or(d.temperature_c),
+        ..d
+    };
+    site.validate().map_err(|e| doc.core_error(e))?;
+    let phi0 = doc
+        .number("sun.phi0_azimuth_deg")
+        .unwrap_or(SunTime::DEFAULT_PHI0_AZIMUTH_DEG);
+    if !(phi0.is_finite() && phi0.abs() <= polbrdf::MAX_AZIMUTH_DEG) {
+        return Err(doc.invalid(
+            "sun.phi0_azimuth_deg",
+            phi0,
+            "must be finite and at most 1e8 degrees in magnitude (as every azimuth)",
+        ));
+    }
+    Ok(Some(SunTime {
+        time,
+        site,
+        delta_t_s: doc.number("sun.delta_t_s"),
+        phi0_azimuth_deg: phi0.rem_euclid(360.0) % 360.0,
+    }))
+}
+
+/// The sun of `[sun]` by date, time and place: above the horizon, or an error naming
+/// `date_time` (a scene file is one instant; a sweep over the day takes the sun away at night
+/// itself, docs/sun-position.md).
+fn sun_from_time(doc: &Doc<'_>, time: &SunTime) -> Result<Sun> {
+    let irradiance = doc.required_in_table("sun.irradiance")?;
+    let (position, direction) = time.surface_direction().map_err(|e| doc.core_error(e))?;
+    let Some((zenith, azimuth)) = direction else {
+        return Err(doc.error(
+            "sun.date_time",
+            format!(
+                "the sun is not above the horizon at {} at latitude {}°, longitude {}° \
+                 (elevation {:.3}°, azimuth {:.3}° from north): check the date, the UTC offset \
+                 and the place, or remove [sun] for a scene without the sun",
+                crate::date_time::format_date_time(&time.time),
+                show(time.site.latitude_deg),
+                show(time.site.longitude_deg),
+                position.elevation_deg(),
+                position.azimuth_deg
+            ),
+        ));
+    };
+    if !(irradiance.is_finite() && irradiance >= 0.0) {
+        return Err(doc.invalid("sun.irradiance", irradiance, "must be finite and >= 0"));
+    }
+    let stokes = match doc.numbers("sun.stokes") {
+        None => Stokes::unpolarized(),
+        Some(s) => sun_stokes(doc, &s)?,
+    };
+    Ok(Sun {
+        zenith,
+        azimuth,
+        irradiance,
+        stokes,
+    })
 }
 
 /// `sun.stokes`: four finite numbers, `s0 > 0`, a degree of polarization at most 1 (to 1e-9,
@@ -1128,6 +1321,7 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
     let doc = Doc::parse(text, path)?;
     let spectrum = spectrum(&doc)?;
     let sun = sun(&doc)?;
+    let sun_time = if sun.is_some() { sun_time(&doc)? } else { None };
     let thermal = ThermalScene {
         surface_temperature_k: surface(&doc),
         sky: sky(&doc)?,
@@ -1144,6 +1338,7 @@ pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
         thermal,
         target,
         background,
+        sun_time,
         air_path,
         files: doc.files.take(),
     })
@@ -1177,6 +1372,7 @@ pub fn read_scene_keys(path: &Path) -> Result<(Scene, Vec<(&'static str, SceneVa
                     SceneValue::Text(doc.resolve(s).to_string_lossy().into_owned())
                 }
                 (_, Value::String(s)) => SceneValue::Text(s.clone()),
+                (_, Value::Datetime(d)) => SceneValue::Text(d.to_string()),
                 (_, Value::Array(_)) => SceneValue::Numbers(doc.numbers(k.name)?),
                 (_, Value::Table(_)) => return None,
                 _ => SceneValue::Number(doc.number(k.name)?),

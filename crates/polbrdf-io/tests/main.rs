@@ -10,3 +10,4 @@ mod material_files;
 mod npy_files;
 mod refractive;
 mod scene;
+mod scene_sun;

@@ -824,7 +824,7 @@ fn cases() -> Vec<Case> {
             Some("sun.elevation_deg"),
             &[
                 "unknown key in [sun]",
-                "zenith_deg, azimuth_deg, irradiance, stokes",
+                "zenith_deg, azimuth_deg, date_time, latitude_deg, longitude_deg, elevation_m, pressure_hpa, temperature_c, delta_t_s, phi0_azimuth_deg, irradiance, stokes",
             ],
         ),
         case(
@@ -1308,7 +1308,7 @@ fn scene_keys_as_given_with_file_names_joined_to_the_folder() {
 #[test]
 fn key_and_sky_model_names() {
     let keys: Vec<_> = polbrdf_io::scene::key_names().collect();
-    assert_eq!(keys.len(), 33);
+    assert_eq!(keys.len(), 41);
     assert_eq!(
         keys[..4],
         ["wavelength_um", "band", "band.response", "band.step_um"]

@@ -14,6 +14,7 @@ pub mod albedo;
 pub mod check;
 pub mod contrast;
 mod contrast_json;
+pub mod daytime;
 pub mod detect;
 pub mod detect_out;
 pub mod emission;
@@ -28,6 +29,7 @@ pub mod pbsdf;
 pub mod radiance;
 pub mod scene;
 pub mod spectrum;
+pub mod sun;
 
 pub use contrast_json::sky_json;
 pub use error::{TaskError, TaskResult};

@@ -5,6 +5,7 @@ mod common;
 
 mod albedo_check;
 mod contrast;
+mod daytime;
 mod detect;
 mod emission;
 mod explore;

@@ -18,4 +18,5 @@ mod precision;
 mod properties;
 mod spectral;
 mod uncertainty;
+mod sun_position;
 mod vectors;

@@ -16,6 +16,7 @@ pub mod facets;
 pub mod scene;
 pub mod sky;
 pub mod spectral;
+pub mod sun_position;
 pub mod thermal;
 
 pub use albedo::{directional_hemispherical, Albedo};
