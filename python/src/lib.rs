@@ -22,9 +22,10 @@
 //! `thermal` (Planck, emissivity), `scene` (the observed radiance, scene files), `fit`
 //! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
-//! sources); this file only registers what they define.
+//! sources), `cli` (the `polbrdf` command); this file only registers what they define.
 
 mod buffers;
+mod cli;
 mod errors;
 mod evaluation;
 mod fit;
@@ -66,5 +67,6 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LUT_CONVENTIONS", polbrdf_tasks::lut::CONVENTIONS)?;
     m.add_class::<fit::PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit::fit_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     Ok(())
 }

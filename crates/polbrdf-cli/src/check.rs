@@ -18,7 +18,7 @@ pub fn run(material: &str, grid_deg: f64, spectral: &SpectralArgs) -> Result<(),
     if grid_deg.is_finite() && grid_deg > 0.0 && request.geometries().is_none_or(|n| n > max) {
         return Err(CliError::Usage(format!(
             "--grid-deg = {grid_deg:e}: the grid would have more than {max} geometries (the \
-             limit of this option, about 1 GB; see the README's Reliability section): give a \
+             limit of this option, about 1 GB; see docs/reliability.md): give a \
              step of at least 0.9°"
         )));
     }

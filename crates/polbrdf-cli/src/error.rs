@@ -1,4 +1,4 @@
-//! The command line's error type and its exit codes (documented in the README).
+//! The command line's error type and its exit codes (documented in the README and docs/cli.md).
 
 /// What can go wrong, each kind with its exit code.
 #[derive(Debug)]

@@ -1,5 +1,5 @@
 //! Every size a user can type on the command line, bounded before anything is allocated
-//! (issue 18; the README's Reliability section lists them). A value over its limit is a usage
+//! (issue 18; docs/reliability.md lists them). A value over its limit is a usage
 //! error naming the option and the limit (exit code 2).
 
 use crate::error::CliError;
@@ -36,8 +36,7 @@ pub const ANGLES: usize = 1_000_000;
 pub fn at_most(option: &str, value: usize, max: usize) -> Result<(), CliError> {
     if value > max {
         Err(CliError::Usage(format!(
-            "{option} = {value}: at most {max} (the limit of this option; see the README's \
-             Reliability section)"
+            "{option} = {value}: at most {max} (the limit of this option; see docs/reliability.md)"
         )))
     } else {
         Ok(())
@@ -49,8 +48,8 @@ pub fn product_at_most(option: &str, a: usize, b: usize, max: usize) -> Result<u
     match a.checked_mul(b) {
         Some(n) if n <= max => Ok(n),
         _ => Err(CliError::Usage(format!(
-            "{option}: {a} × {b} values, at most {max} (the limit of this option; see the \
-             README's Reliability section)"
+            "{option}: {a} × {b} values, at most {max} (the limit of this option; see \
+             docs/reliability.md)"
         ))),
     }
 }
