@@ -43,6 +43,7 @@ __all__ = [
     "brdf_dolp_flat",
     "brightness_temperature_flat",
     "check_task",
+    "cli_main",
     "contrast_task",
     "derivative_step",
     "emission_task",
@@ -348,6 +349,9 @@ def hemisphere_task(
 ) -> tuple[list[str], NDArray[np.float64], tuple[int, int]]:
     """The task layer's hemisphere map (``polbrdf map``): the columns, the table
     (zenith-major) and the grid's (zeniths, azimuths)."""
+
+def cli_main(argv: list[str]) -> int:
+    """Run the ``polbrdf`` command line (argv[0] the program name); return its exit code."""
 
 def albedo_task(
     material: str, theta_i_deg: list[float], spectral: _Spectral

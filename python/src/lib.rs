@@ -23,9 +23,10 @@
 //! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `jobs` (check, band
 //! emissivity, lookup-table rows, `.pbsdf` tables, measurement files), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
-//! sources); this file only registers what they define.
+//! sources), `cli` (the `polbrdf` command); this file only registers what they define.
 
 mod buffers;
+mod cli;
 mod errors;
 mod evaluation;
 mod fit;
@@ -77,5 +78,6 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LUT_CONVENTIONS", polbrdf_tasks::lut::CONVENTIONS)?;
     m.add_class::<fit::PyFitResult>()?;
     m.add_function(wrap_pyfunction!(fit::fit_flat, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     Ok(())
 }

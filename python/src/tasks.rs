@@ -33,8 +33,8 @@ pub(crate) fn task_err(py: Python<'_>, e: &TaskError) -> PyErr {
         }
         TaskError::Limit { field, what, max } => {
             let err = PyValueError::new_err(format!(
-                "invalid `{field}`{what}: at most {max} (the limit of this argument; see the \
-                 README's Reliability section)"
+                "invalid `{field}`{what}: at most {max} (the limit of this argument; see \
+                 docs/reliability.md)"
             ));
             let _ = err.value(py).setattr("argument", field.as_str());
             err

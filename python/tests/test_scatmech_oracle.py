@@ -52,7 +52,7 @@ branch point of q, §3; 1.5e-7 for n = 0.5 at β = 30°), and no geometry here l
 tolerance was widened to hide a disagreement: polbrdf and SCATMECH agree everywhere tested.
 
 Skipped when pySCATMECH is not installed (``pip install pySCATMECH``; it compiles SCATMECH's C++
-from source, a few minutes). CI installs it (scripts/test).
+from source, a few minutes). CI installs it (scripts/test --peers).
 """
 
 from __future__ import annotations
@@ -65,7 +65,7 @@ import pytest
 pytest.importorskip(
     "pySCATMECH",
     reason="the oracle, NIST's pySCATMECH, is not installed: pip install pySCATMECH "
-    "(it compiles SCATMECH's C++ sources, needs g++; scripts/test installs it)",
+    "(it compiles SCATMECH's C++ sources, needs g++; scripts/test --peers installs it)",
 )
 from pySCATMECH.brdf import BRDF_Model
 from pySCATMECH.fresnel import FilmStack, OpticalFunction

@@ -32,7 +32,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml|PRESET")]
     pub background: Option<String>,
     /// A scene file (TOML: wavelength or band, sky, atmosphere, `[target]` and `[background]`
-    /// materials and temperatures; see the README): target and background compared by their
+    /// materials and temperatures; see docs/guide-emission.md): target and background compared by their
     /// observed Stokes radiances — thermal emission and sky included — instead of under one
     /// collimated source.
     #[arg(long, value_name = "SCENE.toml",

@@ -1,4 +1,4 @@
-//! The command line's error type and its exit codes (documented in the README).
+//! The command line's error type and its exit codes (documented in the README and docs/cli.md).
 
 /// What can go wrong, each kind with its exit code.
 #[derive(Debug)]
@@ -147,8 +147,8 @@ impl From<polbrdf_tasks::TaskError> for CliError {
                 CliError::Usage(format!("{} {}", option_of(&field), with_options(&message)))
             }
             TaskError::Limit { field, what, max } => CliError::Usage(format!(
-                "{}{what}: at most {max} (the limit of this option; see the README's \
-                 Reliability section)",
+                "{}{what}: at most {max} (the limit of this option; see \
+                 docs/reliability.md)",
                 option_of(&field)
             )),
             other => CliError::Invalid(other.to_string()),

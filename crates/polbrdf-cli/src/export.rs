@@ -79,7 +79,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     {
         return Err(CliError::Usage(format!(
             "--grid {p},{d},{h}: {:.1} GB of table ({} bands); at most {MAX_EXPORT_BYTES} bytes \
-             (4 GiB) are written (the limit of this option; see the README's Reliability section)",
+             (4 GiB) are written (the limit of this option; see docs/reliability.md)",
             req.matrix_bytes() as f64 / 1e9,
             req.bands_nm.len()
         )));

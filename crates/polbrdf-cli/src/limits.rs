@@ -1,6 +1,6 @@
 //! The sizes of the commands that only the command line has (`bench`, `spectrum`) and of its
-//! own view grids, bounded before anything is allocated (issue 18; the README's Reliability
-//! section lists them). The limits of the jobs (`check`'s grid, a contrast's `top`, the angles
+//! own view grids, bounded before anything is allocated (issue 18; docs/reliability.md
+//! lists them). The limits of the jobs (`check`'s grid, a contrast's `top`, the angles
 //! of `albedo`, `emission` and `radiance`, a fit's starts) live in the task layer
 //! (`polbrdf_tasks::limits`), so Python is bounded the same way. A value over its limit is a
 //! usage error naming the option and the limit (exit code 2).
@@ -31,8 +31,7 @@ pub use polbrdf_tasks::limits::ANGLES;
 pub fn at_most(option: &str, value: usize, max: usize) -> Result<(), CliError> {
     if value > max {
         Err(CliError::Usage(format!(
-            "{option} = {value}: at most {max} (the limit of this option; see the README's \
-             Reliability section)"
+            "{option} = {value}: at most {max} (the limit of this option; see docs/reliability.md)"
         )))
     } else {
         Ok(())
@@ -44,8 +43,8 @@ pub fn product_at_most(option: &str, a: usize, b: usize, max: usize) -> Result<u
     match a.checked_mul(b) {
         Some(n) if n <= max => Ok(n),
         _ => Err(CliError::Usage(format!(
-            "{option}: {a} × {b} values, at most {max} (the limit of this option; see the \
-             README's Reliability section)"
+            "{option}: {a} × {b} values, at most {max} (the limit of this option; see \
+             docs/reliability.md)"
         ))),
     }
 }

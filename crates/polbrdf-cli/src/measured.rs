@@ -39,9 +39,7 @@ fn prepare(
     let table = PbsdfTable::open(args.data)?;
     let stride = plan(&table, args.subsample, args.starts).map_err(|e| match e {
         polbrdf_tasks::TaskError::Invalid { field, message } if field == "starts" => {
-            CliError::Usage(format!(
-                "--starts: {message} (see the README's Reliability section)"
-            ))
+            CliError::Usage(format!("--starts: {message} (see docs/reliability.md)"))
         }
         e => e.into(),
     })?;

@@ -18,7 +18,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml|PRESET")]
     pub material: String,
     /// The scene: wavelength or band, the surface temperature, sky and atmosphere (TOML; see
-    /// the README).
+    /// docs/guide-emission.md).
     #[arg(long, value_name = "SCENE.toml")]
     pub scene: PathBuf,
     /// View zenith angle(s) in degrees, in [0, 90); with --phi-deg, every combination.

@@ -1,5 +1,5 @@
-//! Every size a request can ask for, bounded before anything is allocated (issue 18; the
-//! README's Reliability section and docs/io.md's Resource model list them). The jobs check
+//! Every size a request can ask for, bounded before anything is allocated (issue 18;
+//! docs/reliability.md and docs/io.md's Resource model list them). The jobs check
 //! their own requests against these, so that the CLI and Python are bounded the same way: a
 //! value over its limit is [`TaskError::Limit`] naming the request field (the CLI's usage
 //! error, exit code 2, naming the option; Python's `ValueError` naming the keyword).

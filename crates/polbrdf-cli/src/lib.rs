@@ -1,8 +1,12 @@
-//! The `polbrdf` command line. `main` maps every error to a documented exit code:
-//! 0 success, 1 internal error, 2 usage error, 3 invalid input data, 4 I/O failure, 5 fit did
-//! not converge.
+//! The `polbrdf` command line as a library: [`main_with_args`] parses a command line, runs it
+//! and maps every error to a documented exit code: 0 success, 1 internal error, 2 usage error,
+//! 3 invalid input data, 4 I/O failure, 5 fit did not converge. The `polbrdf` binary
+//! (`src/bin/polbrdf.rs`) and the Python package's `polbrdf` command (`polbrdf._polbrdf.cli_main`)
+//! both call it, so they are the same program. [`command`] is the clap definition, from which
+//! the book's CLI reference (docs/cli.md) is generated.
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use std::ffi::OsString;
 use std::path::PathBuf;
 
 mod albedo;
@@ -36,7 +40,6 @@ mod sweep;
 mod view;
 
 use error::CliError;
-use std::process::ExitCode;
 
 /// Polarimetric BRDF toolkit: the simplified Maxwell–Beard pBRDF (Zhuansun et al. 2015).
 #[derive(Parser)]
@@ -48,21 +51,25 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Evaluate the pBRDF at every geometry of a CSV file.
+    /// Evaluate the pBRDF at every geometry of a table (CSV, .npy, Arrow IPC).
     ///
     /// Output: the input columns, then brdf, dolp, aolp_deg, m00 … m33 (F row-major, psps basis,
-    /// sr⁻¹), with full f64 precision.
+    /// sr⁻¹), with full f64 precision. Formats by extension, for --input and --output alike:
+    /// .npy (a structured NumPy array), .arrow/.feather (Arrow IPC file), .arrows (Arrow IPC
+    /// stream), anything else CSV.
     Eval {
         /// Material: a TOML file, or a preset name (see `polbrdf materials`).
         #[arg(long, value_name = "FILE.toml|PRESET")]
         material: String,
-        /// Geometry CSV with columns theta_i_deg, phi_i_deg, theta_r_deg, phi_r_deg (any order;
-        /// other columns are copied through), and wavelength_um (µm) for a material with a
-        /// spectral index. `-` reads standard input.
-        #[arg(long, value_name = "geometry.csv")]
+        /// Geometry table (CSV, .npy, .arrow, .feather, .arrows) with columns theta_i_deg,
+        /// phi_i_deg, theta_r_deg, phi_r_deg (any order; other columns are copied through) or
+        /// the direction vectors w_i_x, w_i_y, w_i_z, w_r_x, w_r_y, w_r_z, and wavelength_um
+        /// (µm) for a material with a spectral index. `-` reads CSV from standard input.
+        #[arg(long, value_name = "geometry.csv|.npy|.arrow|.arrows")]
         input: PathBuf,
-        /// Output CSV (written atomically); standard output when absent.
-        #[arg(long, value_name = "out.csv")]
+        /// Output table (written atomically; CSV, .npy, .arrow, .feather or .arrows by
+        /// extension); CSV on standard output when absent or `-`.
+        #[arg(long, value_name = "out.csv|.npy|.arrow|.arrows")]
         output: Option<PathBuf>,
     },
     /// Fit material parameters to measurements (Levenberg–Marquardt), with uncertainties.
@@ -238,7 +245,25 @@ enum Command {
     },
 }
 
-fn main() -> ExitCode {
+/// The Rust snippets of the book run as doc-tests of this crate (tests/doc_snippets.rs checks
+/// that every file with one is included here).
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/guide-eval.md")]
+pub struct BookSnippets;
+
+/// The command line's definition (every command, option and help text), as clap holds it.
+pub fn command() -> clap::Command {
+    Cli::command()
+}
+
+/// Runs the command line `args` (the program name first, as `std::env::args_os` gives it) and
+/// returns the process exit code. Installs the signal cleanup and the panic hook of a `polbrdf`
+/// process: call it once, as a process's main function.
+pub fn main_with_args<I, T>(args: I) -> u8
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
     // SIGINT/SIGTERM/SIGHUP remove this run's named temporaries (before any thread starts).
     polbrdf_io::install_signal_cleanup();
     // A panic is a bug: say so, and exit with the documented code 1 (not Rust's 101).
@@ -258,21 +283,21 @@ fn main() -> ExitCode {
         std::process::exit(1);
     }));
     let parsed = Cli::command()
-        .try_get_matches()
+        .try_get_matches_from(args)
         .and_then(|m| Cli::from_arg_matches(&m).map(|cli| (m, cli)));
     let (matches, cli) = match parsed {
         Ok(parsed) => parsed,
         Err(e) => {
             let _ = e.print();
-            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+            return if e.use_stderr() { 2 } else { 0 };
         }
     };
     match checked_run(&matches, cli) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) if e.is_broken_pipe() => ExitCode::from(141),
+        Ok(()) => 0,
+        Err(e) if e.is_broken_pipe() => 141,
         Err(e) => {
             output::note(&format!("polbrdf: error: {e}\n"));
-            ExitCode::from(e.exit_code())
+            e.exit_code()
         }
     }
 }
