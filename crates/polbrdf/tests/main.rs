@@ -17,6 +17,6 @@ mod planes;
 mod precision;
 mod properties;
 mod spectral;
-mod uncertainty;
 mod sun_position;
+mod uncertainty;
 mod vectors;
