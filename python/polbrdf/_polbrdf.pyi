@@ -40,6 +40,7 @@ __all__ = [
     "_material_from_state",
     "albedo_task",
     "brdf_dolp_flat",
+    "bridge_flat",
     "brightness_temperature_flat",
     "contrast_task",
     "derivative_step",
@@ -344,6 +345,16 @@ def albedo_task(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The task layer's albedo (``polbrdf albedo``): theta_i_deg, albedo, surface, volume;
     an empty ``theta_i_deg`` takes the task's default angles."""
+
+def bridge_flat(
+    name: str,
+    values: NDArray[np.float64],
+    angles: NDArray[np.float64],
+    degrees: bool,
+    y_down: bool,
+) -> NDArray[np.float64]:
+    """The core's bridge ``name`` (``polbrdf::geometry::bridges``) row by row: ``values``
+    ``(n, w_v)`` and ``angles`` ``(n, w_a)`` to ``(n, w_out)``; use :mod:`polbrdf.bridges`."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

@@ -20,10 +20,12 @@
 //! One module per concern: `errors` (exceptions), `material` (the `Material` class),
 //! `buffers` (flat arrays in, output arrays out), `evaluation` (the pBRDF kernels),
 //! `thermal` (Planck, emissivity), `scene` (the observed radiance, scene files), `fit`
-//! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `vocabulary`
+//! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `bridges` (other
+//! tools' conventions: cameras, SCATMECH, Mitsuba), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
 //! sources); this file only registers what they define.
 
+mod bridges;
 mod buffers;
 mod errors;
 mod evaluation;
@@ -58,6 +60,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(tasks::contrast_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::hemisphere_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::albedo_task, m)?)?;
+    m.add_function(wrap_pyfunction!(bridges::bridge_flat, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,
