@@ -84,7 +84,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         )));
     }
     req.validate()?;
-    let spec = polbrdf_io::load_material(&args.material)?;
+    let spec = crate::output::load_material(&args.material)?;
     let bytes = polbrdf_tasks::pbsdf::export(&spec, &req, &args.out)?;
     crate::note!(
         "polbrdf export: {} ({p}×{d}×{h} cells × {} bands, {:.1} MB)",

@@ -20,3 +20,4 @@ mod outputs;
 mod pbsdf;
 mod presets;
 mod spectral;
+mod units;

@@ -20,6 +20,7 @@ pub mod scene;
 pub mod stream;
 pub mod table;
 pub mod tensorfile;
+pub mod units;
 pub mod write;
 
 pub use csv_io::{
@@ -36,6 +37,7 @@ pub use refractive::{
 };
 pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
 pub use tensorfile::TensorFile;
+pub use units::{material_warnings, AngleScan, UnitWarning};
 pub use write::{
     check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,
 };
