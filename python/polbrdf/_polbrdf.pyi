@@ -41,6 +41,7 @@ __all__ = [
     "_material_from_state",
     "albedo_task",
     "brdf_dolp_flat",
+    "bridge_flat",
     "brightness_temperature_flat",
     "check_task",
     "cli_main",
@@ -445,6 +446,16 @@ def sun_task(
     phi0_azimuth_deg: float | None,
 ) -> str:
     """The task layer's sun position (``polbrdf sun``): its JSON document."""
+
+def bridge_flat(
+    name: str,
+    values: NDArray[np.float64],
+    angles: NDArray[np.float64],
+    degrees: bool,
+    y_down: bool,
+) -> NDArray[np.float64]:
+    """The core's bridge ``name`` (``polbrdf::geometry::bridges``) row by row: ``values``
+    ``(n, w_v)`` and ``angles`` ``(n, w_a)`` to ``(n, w_out)``; use :mod:`polbrdf.bridges`."""
 
 def vocabulary() -> dict[_VocabularySet, list[str]]:
     """Every closed set of names the module accepts, from the Rust enums."""

@@ -72,3 +72,16 @@ pub(crate) fn python_name(core: &'static str) -> &'static str {
         .find(|n| core.strip_suffix("_deg") == Some(n) || core == *n)
         .unwrap_or(core)
 }
+
+/// Raises each unit warning of polbrdf-io (`units`: a valid value in a probably wrong unit) as a
+/// Python `UserWarning`, attributed to the caller's line. An error only if a warnings filter
+/// turned the warning into an exception.
+pub(crate) fn warn_units(py: Python<'_>, warnings: &[polbrdf_io::UnitWarning]) -> PyResult<()> {
+    let category = py.get_type::<pyo3::exceptions::PyUserWarning>();
+    for w in warnings {
+        // The messages are ours and hold no NUL; one would only shorten the text.
+        let text = std::ffi::CString::new(w.message.replace('\0', " ")).unwrap_or_default();
+        PyErr::warn(py, category.as_any(), &text, 1)?;
+    }
+    Ok(())
+}

@@ -326,6 +326,11 @@ pub(crate) fn fit_flat<'py>(
     let fit_err = |e: polbrdf_fit::FitError| PyValueError::new_err(e.to_string());
     let free: Vec<Param> = Param::parse_list(&free.join(",")).map_err(fit_err)?;
     let geometries = geometries(py, input, n, degrees)?;
+    if degrees {
+        let mut scan = polbrdf_io::AngleScan::default();
+        geometries.iter().for_each(|g| scan.add(g));
+        crate::errors::warn_units(py, scan.warning("polbrdf.fit (degrees=True)").as_slice())?;
+    }
     let mut data = Vec::new();
     for ((name, v), s) in names.iter().zip(&values).zip(&sigmas) {
         let observable = Observable::parse(name).ok_or_else(|| {

@@ -21,10 +21,12 @@
 //! `buffers` (flat arrays in, output arrays out), `evaluation` (the pBRDF kernels),
 //! `thermal` (Planck, emissivity), `scene` (the observed radiance, scene files), `fit`
 //! (fitting), `tasks` (the task layer's jobs: contrast, maps, albedo), `jobs` (check, band
-//! emissivity, lookup-table rows, `.pbsdf` tables, measurement files), `vocabulary`
+//! emissivity, lookup-table rows, `.pbsdf` tables, measurement files), `bridges` (other
+//! tools' conventions: cameras, SCATMECH, Mitsuba), `vocabulary`
 //! (the closed sets of names and the defaults, from their Rust
 //! sources), `cli` (the `polbrdf` command); this file only registers what they define.
 
+mod bridges;
 mod buffers;
 mod cli;
 mod errors;
@@ -70,6 +72,7 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::read_measurements_task, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_measurements_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::sun_task, m)?)?;
+    m.add_function(wrap_pyfunction!(bridges::bridge_flat, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",
         polbrdf::analysis::sky::ClearSky::DEFAULT_DOP_MAX,

@@ -2,6 +2,7 @@
 
 use crate::errors::core_err;
 use crate::errors::io_err;
+use crate::errors::warn_units;
 use polbrdf::model::KeyValue;
 use polbrdf::optics::dispersion::{Dispersion, SpectralIndex};
 use polbrdf::{AzimuthTerm, Form, Material, MaterialSpec};
@@ -287,7 +288,9 @@ impl PyMaterial {
             rho_v: rho_v.unwrap_or(d.rho_v),
             spectral,
         };
-        build(py, &spec)
+        let material = build(py, &spec)?;
+        warn_units(py, &polbrdf_io::material_warnings(&spec, "Material"))?;
+        Ok(material)
     }
 
     /// Load a material file (flat TOML; the keys of the constructor).
@@ -305,7 +308,12 @@ impl PyMaterial {
             path
         };
         let spec = polbrdf_io::read_material(&path).map_err(|e| io_err(&e))?;
-        build(py, &spec)
+        let material = build(py, &spec)?;
+        warn_units(
+            py,
+            &polbrdf_io::material_warnings(&spec, &path.display().to_string()),
+        )?;
+        Ok(material)
     }
 
     /// Parse the text of a material file (as :meth:`from_toml`, for a string). ``source`` is the
@@ -314,7 +322,9 @@ impl PyMaterial {
     #[pyo3(signature = (text, source = "<string>"))]
     fn from_toml_str(py: Python<'_>, text: &str, source: &str) -> PyResult<Self> {
         let spec = polbrdf_io::parse_material(text, Path::new(source)).map_err(|e| io_err(&e))?;
-        build(py, &spec)
+        let material = build(py, &spec)?;
+        warn_units(py, &polbrdf_io::material_warnings(&spec, source))?;
+        Ok(material)
     }
 
     /// A built-in material by name (``Material.presets()`` lists them). ``ValueError`` for an

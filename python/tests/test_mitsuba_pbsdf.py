@@ -16,6 +16,7 @@ import pytest
 from test_cli import CLI
 
 import polbrdf
+from polbrdf import bridges
 
 mi = pytest.importorskip("mitsuba", reason="mitsuba is not installed (pip install mitsuba)")
 if "scalar_spectral_polarized" not in mi.variants():  # pragma: no cover
@@ -41,16 +42,15 @@ def direction(theta: np.ndarray, phi: np.ndarray) -> np.ndarray:
     )
 
 
-def mitsuba_frames(f: np.ndarray, wi: np.ndarray, wr: np.ndarray, out_x=None, in_x=None):
+def mitsuba_frames(f: np.ndarray, wi: np.ndarray, wr: np.ndarray, out_x, in_x):
     """A psps pBRDF (docs/model.md §2) re-expressed by Mitsuba's own `rotate_mueller_basis` in
-    Mitsuba's implicit bases (`stokes_basis(-w_i)` in, `stokes_basis(w_r)` out), or in the given
-    reference axes, with Mitsuba's sign of S3 (docs/model.md §20)."""
+    the given reference axes, with Mitsuba's sign of S3 (docs/model.md §20). Mitsuba's implicit
+    bases are `polbrdf.bridges.mueller_to_mitsuba`'s (test_bridges_peers.py)."""
     pi, pr = np.arctan2(wi[1], wi[0]), np.arctan2(wr[1], wr[0])
     s_in = mi.Vector3f(np.sin(pi), -np.cos(pi), 0.0)
     s_out = mi.Vector3f(-np.sin(pr), np.cos(pr), 0.0)
     k_in, k_out = mi.Vector3f(*(-wi)), mi.Vector3f(*wr)
-    x_in = mi.mueller.stokes_basis(k_in) if in_x is None else mi.Vector3f(*in_x)
-    x_out = mi.mueller.stokes_basis(k_out) if out_x is None else mi.Vector3f(*out_x)
+    x_in, x_out = mi.Vector3f(*in_x), mi.Vector3f(*out_x)
     m = np.array(mi.mueller.rotate_mueller_basis(
         mi.Matrix4f(f.tolist()), k_in, s_in, x_in, k_out, s_out, x_out
     ))
@@ -109,7 +109,7 @@ def test_roughconductor_fixes_the_frames_and_the_sign_of_s3() -> None:
         if got[0, 0] < 1e-6:
             continue  # the Beckmann lobe (α = 0.3) underflows in float32 far from specular
         f = polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False)
-        want = mitsuba_frames(f, wi, wr)
+        want = bridges.mueller_to_mitsuba(f, ti, pi, tr, pr, degrees=False)
         np.testing.assert_allclose(got / got[0, 0], want / want[0, 0], atol=2e-5)
         compared += 1
         coupling = max(coupling, abs(want[2, 3]) / want[0, 0], abs(want[3, 2]) / want[0, 0])
@@ -146,7 +146,7 @@ def test_measured_polarized_at_grid_nodes(exported: Path) -> None:
         ti, pi = np.arccos(wi[2]), np.arctan2(wi[1], wi[0])
         tr, pr = np.arccos(wr[2]), np.arctan2(wr[1], wr[0])
         f = polbrdf.mueller(mat, ti, pi, tr, pr, degrees=False)
-        want = mitsuba_frames(f, wi, wr)
+        want = bridges.mueller_to_mitsuba(f, ti, pi, tr, pr, degrees=False)
         got = mitsuba_eval(bsdf, wi, wr, BANDS[:4]) / wi[2]
         for band in range(4):
             np.testing.assert_allclose(got[:, :, band], want, atol=1e-4 * np.abs(want).max())
@@ -185,7 +185,7 @@ def test_measured_polarized_between_nodes(exported: Path) -> None:
         x /= np.linalg.norm(x)
         t_exact = mitsuba_frames(f, wi, wr, out_x=x, in_x=x)
         bound = max(np.linalg.norm(cn - t_exact) for cn in corners)
-        want = mitsuba_frames(f, wi, wr)
+        want = bridges.mueller_to_mitsuba(f, ti, pi, tr, pr, degrees=False)
         got = mitsuba_eval(bsdf, wi, wr, BANDS[:4])[:, :, 0] / wi[2]
         err = np.linalg.norm(got - want)
         assert err <= bound + 1e-4 * f[0, 0], (err, bound)

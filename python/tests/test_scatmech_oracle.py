@@ -72,6 +72,7 @@ from pySCATMECH.fresnel import FilmStack, OpticalFunction
 from pySCATMECH.mueller import JonesMueller, StokesVector
 
 import polbrdf
+from polbrdf import bridges
 
 #: Relative (to F00) or absolute (normalized and Fresnel matrices) tolerance; see the docstring.
 TOL = 1e-12
@@ -96,8 +97,10 @@ def dielectric(n: float, k: float) -> str:
 
 
 def scatmech_angles(ti: float, pi: float, tr: float, pr: float) -> tuple[float, float, float]:
-    """polbrdf's (θi, φi, θr, φr) in degrees -> SCATMECH's (thetai, thetas, phis) in radians."""
-    return math.radians(ti), math.radians(tr), math.radians(pr - pi - 180.0)
+    """polbrdf's (θi, φi, θr, φr) in degrees -> SCATMECH's (thetai, thetas, phis) in radians,
+    by the public bridge (``polbrdf.bridges.to_scatmech``, docs/bridges.md)."""
+    a, s, p = bridges.to_scatmech(ti, pi, tr, pr)
+    return math.radians(float(a)), math.radians(float(s)), math.radians(float(p))
 
 
 def scatmech_mueller(model: BRDF_Model, g: tuple[float, float, float, float]) -> np.ndarray:

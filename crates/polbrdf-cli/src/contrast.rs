@@ -354,7 +354,7 @@ fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), Cli
             }
         ),
         grid: polar_grid(grid, d_aolp)?,
-        scale: angle_scale(Colormap::Diverging, "ΔAoLP (°)"),
+        scale: angle_scale(Colormap::CyclicDiverging, "ΔAoLP (°)"),
         marks: light.clone(),
     };
     let pc = values(ContrastSample::polarization_contrast);

@@ -18,7 +18,7 @@ use std::path::Path;
 /// CSV); the output is `-` (standard output) when absent. An error
 /// mid-stream leaves a regular output file as it was.
 pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), CliError> {
-    let spec = polbrdf_io::load_material(material)?;
+    let spec = crate::output::load_material(material)?;
     let out_path = output.unwrap_or(Path::new("-"));
     polbrdf_io::check_distinct(&[input, Path::new(material)], &[out_path])?;
     let mut reader = GeometryReader::open(input)?;
@@ -42,7 +42,11 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
     if let Some(kinds) = reader.column_kinds() {
         writer.column_kinds(kinds);
     }
+    let mut scan = polbrdf_io::AngleScan::default();
     while let Some(chunk) = reader.next_chunk(CHUNK_ROWS)? {
+        if let Geometries::Angles(g) = &chunk.geometries {
+            g.iter().for_each(|g| scan.add(g));
+        }
         let pbrdf = match &fixed {
             Some(m) => pbrdf_of(&Engine::new(m), &chunk.geometries)?,
             None => {
@@ -58,7 +62,9 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
         };
         writer.write_chunk(&chunk, &pbrdf)?;
     }
-    Ok(writer.finish()?)
+    writer.finish()?;
+    crate::output::unit_warnings(scan.warning(&input.display().to_string()).as_slice());
+    Ok(())
 }
 
 /// The results of a chunk's rows through the engine: from the angles, or from the direction

@@ -85,7 +85,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         )));
     }
     req.validate()?;
-    let spec = polbrdf_io::load_material(&args.material)?;
+    let spec = crate::output::load_material(&args.material)?;
     let bar = crate::progress::Progress::new(p as u64, "export: φ_d slabs");
     let bytes =
         polbrdf_tasks::pbsdf::export_with_progress(&spec, &req, &args.out, &mut |done, total| {

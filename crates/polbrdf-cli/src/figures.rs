@@ -41,6 +41,26 @@ pub fn light_marks(light: &Illumination) -> Vec<PolarMark> {
     ]
 }
 
+/// The legend of [`invalid_marks`].
+pub const INVALID_LEGEND: &str = "model invalid here (emissivity outside [0, 1])";
+
+/// Marks on the rings of the zeniths (rad) where the model is flagged invalid (issue 36;
+/// `polbrdf_tasks::hemisphere::invalid_zeniths`): a dot every 15° of azimuth.
+pub fn invalid_marks(zeniths: &[f64]) -> Vec<PolarMark> {
+    zeniths
+        .iter()
+        .flat_map(|&t| {
+            (0..24).map(move |k| PolarMark {
+                theta_deg: deg(t),
+                phi_deg: 15.0 * f64::from(k),
+                shape: MarkShape::Dot,
+                label: String::new(),
+                legend: INVALID_LEGEND.into(),
+            })
+        })
+        .collect()
+}
+
 /// DoLP colour scale: viridis over the whole range [0, 1], so maps compare directly.
 pub fn dolp_scale() -> ColorScale {
     ColorScale::linear(Colormap::Viridis, 0.0, 1.0, "DoLP")

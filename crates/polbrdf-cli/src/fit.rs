@@ -30,8 +30,11 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
     // Options before data (issue 35): no file is read for a command line that is refused.
     let free = Param::parse_list(args.free)?;
     crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
-    let base = polbrdf_io::load_material(args.material)?;
+    let base = crate::output::load_material(args.material)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
+    let mut scan = polbrdf_io::AngleScan::default();
+    table.geometries.iter().for_each(|g| scan.add(g));
+    crate::output::unit_warnings(scan.warning(&args.data.display().to_string()).as_slice());
     let data = polbrdf_tasks::fit::measurements(&table)?;
     drop(table);
     let opts = FitOptions {

@@ -3,8 +3,8 @@
 
 use crate::error::CliError;
 use crate::figures::{
-    angle_scale, dolp_scale, input_stokes, light_marks, log_limits, polar_grid, render_all, short,
-    single, PANEL,
+    angle_scale, dolp_scale, input_stokes, invalid_marks, light_marks, log_limits, polar_grid,
+    render_all, short, single, PANEL,
 };
 use crate::output::{csv, write_all, OutputFile};
 use crate::view::ViewArgs;
@@ -55,6 +55,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             deg(b.phi_r)
         );
     }
+    if let Some(t) = map.invalid_zeniths.first() {
+        println!(
+            "  model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = {}° \
+             (marked on the maps)",
+            map.invalid_zeniths.len(),
+            short(deg(*t))
+        );
+    }
     println!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
 }
@@ -68,7 +76,8 @@ fn map_files(map: &Hemisphere, name: &str) -> Result<Vec<OutputFile>, CliError> 
         .iter()
         .map(|s| s.stokes.aolp().to_degrees())
         .collect();
-    let marks = light_marks(light);
+    let mut marks = light_marks(light);
+    marks.extend(invalid_marks(&map.invalid_zeniths));
     let input = input_stokes(light, (", input S = (", ")"));
     let (lo, hi) = log_limits(&s0);
     let (brdf_title, brdf_label) = if unpolarized {

@@ -35,7 +35,7 @@ fn prepare(
     }
     crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
     let free = Param::parse_list(args.free)?;
-    let base = polbrdf_io::load_material(args.material)?;
+    let base = crate::output::load_material(args.material)?;
     let table = PbsdfTable::open(args.data)?;
     let stride = plan(&table, args.subsample, args.starts).map_err(|e| match e {
         polbrdf_tasks::TaskError::Invalid { field, message } if field == "starts" => {

@@ -33,6 +33,21 @@ macro_rules! note {
     };
 }
 
+/// Prints warnings about suspicious units (polbrdf-io's `units`) as notes:
+/// `polbrdf: warning: <message>` on standard error. The command goes on.
+pub fn unit_warnings(warnings: &[polbrdf_io::UnitWarning]) {
+    for w in warnings {
+        note!("polbrdf: warning: {w}");
+    }
+}
+
+/// `polbrdf_io::load_material`, with the material's unit warnings printed ([`unit_warnings`]).
+pub fn load_material(arg: &str) -> Result<polbrdf::MaterialSpec, CliError> {
+    let spec = polbrdf_io::load_material(arg)?;
+    unit_warnings(&polbrdf_io::material_warnings(&spec, arg));
+    Ok(spec)
+}
+
 /// A file to write: name in the output directory and content.
 pub type OutputFile = (String, Vec<u8>);
 

@@ -61,6 +61,18 @@ fn the_readme_example_recovers_the_known_paint() {
     }
     assert_eq!(v["covariance"].as_array().unwrap().len(), 4);
     assert_eq!(v["converged"], Value::Bool(true));
+    // The residual figure shows the model against the data too (issue 36), then the residuals,
+    // for each kind of measurement.
+    let svg = std::fs::read_to_string(dir.path().join("residuals.svg")).unwrap();
+    for title in [
+        "BRDF: fitted model and data",
+        "DoLP: fitted model and data",
+        "BRDF: ",
+        "RMS",
+    ] {
+        assert!(svg.contains(title), "residuals.svg lacks {title:?}");
+    }
+    assert!(svg.find("BRDF: fitted model and data") < svg.find("DoLP: fitted model and data"));
     // The fitted material loads back into eval.
     let geo = write(
         dir.path(),

@@ -24,3 +24,4 @@ mod outputs;
 mod pbsdf;
 mod presets;
 mod spectral;
+mod units;

@@ -84,6 +84,33 @@ fn map_writes_csv_and_maps_of_the_model() {
     );
     let (w, h, _) = decode(&out.join("overview.png"));
     assert_eq!((w, h), (3 * 620, 580));
+    // Where the model is flagged invalid (its emissivity outside [0, 1]: paint reflects more
+    // than it receives seen near grazing), the maps mark it and the summary says so (issue 36).
+    let flagged: Vec<f64> = (0..60)
+        .map(|k| 1.5 * f64::from(k))
+        .filter(|t| {
+            !polbrdf::analysis::emissivity(&paint, t.to_radians())
+                .unwrap()
+                .is_valid()
+        })
+        .collect();
+    assert!(!flagged.is_empty() && flagged[0] > 80.0, "{flagged:?}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains(&format!(
+            "model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = {}°",
+            flagged.len(),
+            flagged[0]
+        )),
+        "{stdout}"
+    );
+    for panel in ["brdf.svg", "dolp.svg", "aolp.svg"] {
+        let svg = std::fs::read_to_string(out.join(panel)).unwrap();
+        assert!(
+            svg.contains("model invalid here (emissivity outside [0, 1])"),
+            "{panel} has no legend entry for the invalid region"
+        );
+    }
 }
 
 #[test]

@@ -23,6 +23,7 @@ pub mod sensor;
 pub mod stream;
 pub mod table;
 pub mod tensorfile;
+pub mod units;
 pub mod write;
 
 pub use csv_io::{
@@ -41,6 +42,7 @@ pub use refractive::{
 pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
 pub use sensor::{parse_sensor, read_sensor, SensorFile};
 pub use tensorfile::TensorFile;
+pub use units::{material_warnings, AngleScan, UnitWarning};
 pub use write::{
     check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,
 };

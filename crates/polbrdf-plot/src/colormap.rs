@@ -1,6 +1,7 @@
 //! Colour maps for heat maps: a sequential one (viridis), a diverging one (ColorBrewer RdBu,
-//! blue for negative, white at the centre, red for positive) and a cyclic one (a hue circle of
-//! constant OKLab lightness and chroma, for angles).
+//! blue for negative, white at the centre, red for positive), a cyclic one (a hue circle of
+//! constant OKLab lightness and chroma, for angles) and a cyclic diverging one (for differences
+//! of angles: white at 0, blue and red either side, the same dark grey at both ends).
 
 use plotters::style::RGBColor;
 
@@ -19,6 +20,12 @@ pub enum Colormap {
     /// A closed hue circle at constant OKLab lightness (0.72) and chroma (0.11): 0 and 1 give the
     /// same colour. For angles (e.g. AoLP).
     Cyclic,
+    /// Cyclic and diverging, for signed differences of angles (e.g. ΔAoLP in (−90°, 90°]):
+    /// near white at ½ (no difference), blue below, red above, and the same dark grey at 0 and 1
+    /// (±90°, the same orientation), so a wrap shows no edge. In OKLab with `x = 2π(t − ½)`:
+    /// lightness `0.6 + 0.35·cos x`, chroma `0.15·|sin x|`, hue 30° (red) for `x > 0`, 255°
+    /// (blue) for `x < 0`; the hue changes only where the chroma is 0, so the map is continuous.
+    CyclicDiverging,
 }
 
 /// Viridis, polynomial fit (matplotlib's viridis is CC0; fit by Matt Zucker).
@@ -135,6 +142,53 @@ impl Colormap {
                 let h = std::f64::consts::TAU * t.rem_euclid(1.0);
                 oklab(0.72, 0.11 * h.cos(), 0.11 * h.sin())
             }
+            Colormap::CyclicDiverging => {
+                let x = std::f64::consts::TAU * (t.rem_euclid(1.0) - 0.5);
+                let chroma = 0.15 * x.sin().abs();
+                let hue = if x > 0.0 { 30f64 } else { 255f64 }.to_radians();
+                oklab(0.6 + 0.35 * x.cos(), chroma * hue.cos(), chroma * hue.sin())
+            }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn distance(a: RGBColor, b: RGBColor) -> i32 {
+        [(a.0, b.0), (a.1, b.1), (a.2, b.2)]
+            .iter()
+            .map(|&(x, y)| (i32::from(x) - i32::from(y)).abs())
+            .max()
+            .unwrap_or(0)
+    }
+
+    #[test]
+    fn the_cyclic_maps_close_and_the_diverging_one_does_not() {
+        for map in [Colormap::Cyclic, Colormap::CyclicDiverging] {
+            assert!(distance(map.rgb(0.0005), map.rgb(0.9995)) <= 2, "{map:?}");
+            // Continuous everywhere: neighbours 1/1000 apart differ by a few levels at most.
+            for i in 0..1000 {
+                let t = f64::from(i) / 1000.0;
+                assert!(
+                    distance(map.rgb(t), map.rgb(t + 0.001)) <= 4,
+                    "{map:?} at {t}"
+                );
+            }
+        }
+        assert!(distance(Colormap::Diverging.rgb(0.0), Colormap::Diverging.rgb(1.0)) > 60);
+    }
+
+    #[test]
+    fn the_cyclic_diverging_map_is_light_at_zero_and_blue_below_red_above() {
+        let m = Colormap::CyclicDiverging;
+        let white = m.rgb(0.5);
+        assert!(white.0 > 230 && white.1 > 230 && white.2 > 230, "{white:?}");
+        let (blue, red) = (m.rgb(0.25), m.rgb(0.75));
+        assert!(blue.2 > blue.0 + 40, "{blue:?}");
+        assert!(red.0 > red.2 + 40, "{red:?}");
+        let dark = m.rgb(0.0);
+        assert!(dark.0 < 90 && dark.1 < 90 && dark.2 < 90, "{dark:?}");
     }
 }

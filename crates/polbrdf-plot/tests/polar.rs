@@ -220,3 +220,29 @@ fn log_scale_and_colour_maps() {
     assert_eq!(polbrdf_plot::nice_ceil(0.37), 0.4);
     assert_eq!(polbrdf_plot::nice_ceil(1.0), 1.0);
 }
+
+#[test]
+fn a_delta_aolp_wrap_at_plus_minus_90_degrees_is_no_edge() {
+    // ΔAoLP of +89.9° and −89.9° are orientations 0.2° apart: the same colour (issue 36).
+    let scale = ColorScale {
+        period: Some(180.0),
+        ..ColorScale::linear(Colormap::CyclicDiverging, -90.0, 90.0, "ΔAoLP (°)")
+    };
+    let (a, b) = (scale.color(89.9), scale.color(-89.9));
+    let d = [(a.0, b.0), (a.1, b.1), (a.2, b.2)]
+        .iter()
+        .map(|&(x, y)| (i32::from(x) - i32::from(y)).abs())
+        .max()
+        .unwrap();
+    assert!(d <= 2, "{a:?} vs {b:?}");
+    // The diverging map the contrast figure used before puts them at the two ends of the bar.
+    let old = ColorScale {
+        colormap: Colormap::Diverging,
+        ..scale.clone()
+    };
+    let (a, b) = (old.color(89.9), old.color(-89.9));
+    assert!(i32::from(a.0) - i32::from(b.0) > 50, "{a:?} vs {b:?}");
+    // No difference is white.
+    let w = scale.color(0.0);
+    assert!(w.0 > 230 && w.1 > 230 && w.2 > 230, "{w:?}");
+}

@@ -19,6 +19,40 @@ fn roughness_label(r: f64) -> String {
     }
 }
 
+/// Makes curves that overlap distinguishable (issue 36: in Fig. 2(b) the shadowing curves of
+/// θi ≥ 30° nearly coincide): the i-th of n curves is drawn `2 + (n − 1 − i)` px wide, widest
+/// first, so a curve lying on another leaves a coloured rim of the one below; and each carries
+/// markers (discs and squares in turn) at every `len/8`-th point, shifted by curve so that the
+/// markers of coinciding curves sit side by side instead of on top of each other.
+fn distinguish(lines: &mut [Line]) -> Vec<Markers> {
+    let n = lines.len();
+    let mut markers = Vec::with_capacity(n);
+    for (i, line) in lines.iter_mut().enumerate() {
+        line.width = 2 + (n - 1 - i) as u32;
+        let step = (line.points.len() / 8).max(1);
+        let offset = step / 2 + i * step / n.max(1);
+        let points: Vec<(f64, f64)> = line
+            .points
+            .iter()
+            .skip(offset.min(line.points.len()))
+            .step_by(step)
+            .copied()
+            .collect();
+        markers.push(Markers {
+            label: String::new(),
+            colors: vec![line.color; points.len()],
+            points,
+            legend_color: line.color,
+            marker: if i % 2 == 0 {
+                Marker::Disc
+            } else {
+                Marker::Square
+            },
+        });
+    }
+    markers
+}
+
 /// Fig. 2: BRDF vs θN (log axis) and the shadowing factor.
 pub fn fig2(a: &Analysis) -> Figure {
     let f = &a.fig2;
@@ -30,7 +64,7 @@ pub fn fig2(a: &Analysis) -> Figure {
             hi = hi.max(v.log10());
         }
     }
-    let lines_a = f
+    let mut lines_a: Vec<Line> = f
         .thetas_deg
         .iter()
         .zip(&f.brdf)
@@ -65,6 +99,8 @@ pub fn fig2(a: &Analysis) -> Figure {
             width: 2,
         })
         .collect();
+    let markers_a = distinguish(&mut lines_a);
+    let markers_b = distinguish(&mut lines_b);
     lines_b.push(Line {
         label: "shadowing off (every θi)".into(),
         points: vec![(0.0, 1.0), (FIG2_THETA_N_MAX_DEG, 1.0)],
@@ -88,12 +124,14 @@ pub fn fig2(a: &Analysis) -> Figure {
                 x_ticks: 7,
                 y_ticks: 20,
                 lines: lines_a,
-                markers: vec![],
+                markers: markers_a,
                 vlines: vec![],
                 legend: LegendAt::UpperRight,
             },
             Panel {
-                title: "(b) shadowing: f / f(shadowing off) = SO(θN, β = θi)".into(),
+                title:
+                    "(b) shadowing: f / f(shadowing off) = SO(θN, β = θi); θi ≥ 30° nearly coincide"
+                        .into(),
                 x_desc: "facet tilt θN (deg)".into(),
                 y_desc: "ratio to the unshadowed BRDF".into(),
                 x_range: (0.0, FIG2_THETA_N_MAX_DEG),
@@ -103,7 +141,7 @@ pub fn fig2(a: &Analysis) -> Figure {
                 x_ticks: 7,
                 y_ticks: 9,
                 lines: lines_b,
-                markers: vec![],
+                markers: markers_b,
                 vlines: vec![],
                 legend: LegendAt::LowerLeft,
             },
@@ -322,5 +360,41 @@ pub fn fig5(a: &Analysis) -> Figure {
                 legend: LegendAt::UpperLeft,
             },
         ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coinciding_curves_get_their_own_widths_and_marker_positions() {
+        // Seven identical curves (Fig. 2(b)'s θi ≥ 30° are nearly so): each must stay visible.
+        let mut lines: Vec<Line> = (0..7)
+            .map(|i| Line {
+                label: format!("{i}"),
+                points: (0..600).map(|k| (f64::from(k) * 0.1, 1.0)).collect(),
+                color: PALETTE[i],
+                dashed: false,
+                width: 2,
+            })
+            .collect();
+        let markers = distinguish(&mut lines);
+        for i in 0..7 {
+            assert!(markers[i].points.len() >= 7, "{}", markers[i].points.len());
+            assert!(markers[i].label.is_empty(), "no second legend entry");
+            for j in 0..i {
+                // Wider curves are drawn first (underneath).
+                assert!(lines[j].width > lines[i].width);
+                assert!(markers[j].marker != markers[i].marker || i - j >= 2);
+                for p in &markers[i].points {
+                    assert!(
+                        markers[j].points.iter().all(|q| (q.0 - p.0).abs() > 0.5),
+                        "markers of curves {j} and {i} coincide at x = {}",
+                        p.0
+                    );
+                }
+            }
+        }
     }
 }

@@ -5,7 +5,8 @@
 use crate::error::{TaskError, TaskResult};
 use crate::spectrum::{material_at, NamedMaterial, SpectralRequest};
 use polbrdf::analysis::contrast::{hemisphere_mean, Illumination, ViewGrid, ViewSample};
-use polbrdf::{Spectrum, Stokes};
+use polbrdf::analysis::emissivity;
+use polbrdf::{Material, Spectrum, Stokes};
 
 /// A collimated source (the sun): zenith angle (required), azimuth and Stokes vector, degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,6 +95,8 @@ pub struct Hemisphere {
     pub grid: ViewGrid,
     /// One sample per grid direction, zenith-major.
     pub samples: Vec<ViewSample>,
+    /// The grid zeniths (rad) where the model is flagged invalid ([`invalid_zeniths`]).
+    pub invalid_zeniths: Vec<f64>,
 }
 
 impl Hemisphere {
@@ -150,11 +153,31 @@ pub fn hemisphere(request: &HemisphereRequest) -> TaskResult<Hemisphere> {
     let material = NamedMaterial::load(&request.material, "material")?;
     let nodes = material_at(&material, spectrum.as_ref())?;
     let samples = hemisphere_mean(&nodes, &light, &grid);
+    let invalid_zeniths = invalid_zeniths(&nodes, &grid);
     Ok(Hemisphere {
         material,
         spectrum,
         light,
         grid,
         samples,
+        invalid_zeniths,
     })
+}
+
+/// The grid zeniths (rad) where the model is flagged invalid: the material's emissivity toward
+/// that zenith — by reciprocity one minus the reflectance of light arriving from there — lies
+/// outside `[0, 1]` for some polarization at some node of the spectrum
+/// (`Emissivity::is_valid`, docs/model.md §10, §16): the model reflects more than it receives
+/// there. Empty for the `paper` form, whose hemispherical integral diverges (no finite flag).
+/// One emissivity per zenith and node (a hemispherical integral each).
+pub fn invalid_zeniths(nodes: &[(f64, Material)], grid: &ViewGrid) -> Vec<f64> {
+    grid.thetas()
+        .into_iter()
+        .filter(|&t| t < std::f64::consts::FRAC_PI_2)
+        .filter(|&t| {
+            nodes
+                .iter()
+                .any(|(_, m)| emissivity(m, t).is_ok_and(|e| !e.is_valid()))
+        })
+        .collect()
 }

@@ -20,8 +20,13 @@ use crate::geometry::angles::AngleVariables;
 use crate::geometry::direction::Geometry;
 use crate::optics::mueller::Mueller;
 
-/// `|w_z|` below this is the horizon: the rounding of the cell construction (a few 1e-17).
-pub const HORIZON_ROUNDING: f64 = 1e-12;
+/// `|w_z|` below this is the horizon. A table's nodes are float32 (the plugin's type) and the
+/// cells are evaluated at those values: two nodes whose in-plane sum `θ_h + θ_d` is 90° round
+/// to a sum up to ~1.3e-7 rad off it (82° + 8° is 89.99999°, `w_z` ≈ 4e-8), where the standard
+/// form's `1/(cosθi cosθr)` made the cell 1e8–1e9 sr⁻¹ and the plugin's interpolation spread
+/// that over the neighbouring cells: the fireflies of issue 36. 1e-6 (0.2″) covers that rounding
+/// with margin; a direction that close to the horizon is no measurement anyway.
+pub const HORIZON_ROUNDING: f64 = 1e-6;
 
 /// The geometry of the table cell `(φ_d, θ_d, θ_h)` (radians): light toward `w_i`, view toward
 /// `w_r`, both from the construction in the module documentation. A direction below the horizon
@@ -111,6 +116,30 @@ mod tests {
                 ];
                 let p: [f64; 3] = std::array::from_fn(|k| wi[k] - dot(wi, h) * h[k]);
                 assert!((dot(b, p).atan2(dot(t, p)) - pd).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn horizon_nodes_at_their_float32_values_are_on_the_horizon() {
+        // The export evaluates every cell at its nodes rounded to float32: every pair with
+        // θ_h + θ_d = 90° of the default 2° × 1° grid (and of a 1° × 1° one) is on the horizon
+        // there and has a zero pBRDF, not 1e8 sr⁻¹ (issue 36's fireflies).
+        let m = MaterialSpec::new(1.65, 15.0).build().unwrap();
+        let f32_node = |deg: f64| f64::from(deg.to_radians() as f32);
+        for step in [1.0, 2.0] {
+            let mut td = 0.0;
+            while td <= 90.0 {
+                let th = 90.0 - td;
+                for pd in [0.0, std::f64::consts::PI, f64::from(std::f32::consts::PI)] {
+                    let g = cell_geometry(pd, f32_node(td), f32_node(th)).unwrap();
+                    assert!(
+                        g.angle_variables().is_none(),
+                        "θ_d = {td}°, θ_h = {th}°: {g:?}"
+                    );
+                    assert_eq!(m.pbrdf(&g), Mueller::zero());
+                }
+                td += step;
             }
         }
     }
