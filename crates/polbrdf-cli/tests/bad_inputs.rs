@@ -212,6 +212,40 @@ fn radiance_scene(
     )
 }
 
+/// A valid photon-counting sensor file.
+const CAM: &str = "noise_model = \"photon-counting\"\nextinction_ratio = 300\npixel_pitch_um = 3.45\nfocal_length_mm = 25\nf_number = 4\nquantum_efficiency = 0.6\nintegration_time_ms = 1\nfull_well_e = 10000\nread_noise_e = 2\nadc_bits = 12\nband_lo_um = 0.45\nband_hi_um = 0.65\n";
+/// A valid scene for `detect`.
+const DETECT_SCENE: &str = "wavelength_um = 0.55\n[sun]\nzenith_deg = 30\nirradiance = 1000\n[target]\nmaterial = \"paint\"\n[background]\nmaterial = \"glass\"\n";
+
+/// `detect` of the scene `s.toml` holding `scene` with the sensor file `c.toml` holding
+/// `sensor`, with `files` and `extra` options.
+fn detect(
+    what: &'static str,
+    (scene, sensor): (&str, &str),
+    files: Vec<(&'static str, Vec<u8>)>,
+    extra: &[&'static str],
+    code: i32,
+    says: &[&'static str],
+) -> Case {
+    let mut f = vec![("s.toml", t(scene)), ("c.toml", t(sensor))];
+    f.extend(files);
+    let mut args = vec![
+        "detect",
+        "--scene",
+        "{d}/s.toml",
+        "--sensor",
+        "{d}/c.toml",
+        "--theta-deg",
+        "30",
+        "--ranges-m",
+        "100",
+        "--out",
+        "{d}/out",
+    ];
+    args.extend_from_slice(extra);
+    case(what, f, &args, code, says)
+}
+
 /// `contrast --scene` on a scene file `s.toml` holding `toml`, with `files`.
 fn contrast_scene(
     what: &'static str,
@@ -870,6 +904,35 @@ fn table_common() -> Vec<Case> {
         contrast_scene("scene and sun", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--sun-zenith-deg", "30"], 2, &["--scene", "--sun-zenith-deg"]),
         contrast_scene("scene and wavelength option", &format!("wavelength_um = 10\n{OBJECTS}"), vec![], &["--wavelength-um", "10"], 2, &["--scene", "--wavelength-um"]),
         contrast_scene("scene contrast (valid)", &format!("wavelength_um = 10\n{OBJECTS}[sky]\nmodel = \"thermal\"\ntemperature_k = 250\n"), vec![], &[], 0, &[]),
+        // detect: sensor files, the scene's [path], the request (docs/detection.md).
+        detect("detect (valid)", (DETECT_SCENE, CAM), vec![], &[], 0, &[]),
+        detect("detect: sensor unknown key", (DETECT_SCENE, &format!("{CAM}colour = 3\n")), vec![], &[], 3, &["c.toml:13", "`colour`", "unknown key"]),
+        detect("detect: sensor TOML syntax", (DETECT_SCENE, "noise_model = \n"), vec![], &[], 3, &["c.toml:1"]),
+        detect("detect: sensor table", (DETECT_SCENE, &format!("{CAM}[optics]\nf = 2\n")), vec![], &[], 3, &["c.toml", "tables are not allowed"]),
+        detect("detect: sensor without noise model", (DETECT_SCENE, "pixel_pitch_um = 3\n"), vec![], &[], 3, &["c.toml", "`noise_model`"]),
+        detect("detect: sensor unknown noise model", (DETECT_SCENE, &CAM.replace("photon-counting", "magic")), vec![], &[], 3, &["c.toml:1", "`noise_model`", "magic"]),
+        detect("detect: sensor key of the other model", (DETECT_SCENE, &format!("{CAM}netd_mk = 50\n")), vec![], &[], 3, &["c.toml:13", "`netd_mk`", "belongs to noise_model = \"nel\""]),
+        detect("detect: sensor r and extinction ratio", (DETECT_SCENE, &format!("{CAM}r = 0.01\n")), vec![], &[], 3, &["c.toml", "`extinction_ratio`", "not both"]),
+        detect("detect: sensor q above 1", (DETECT_SCENE, &format!("{CAM}q = 1.5\n")), vec![], &[], 3, &["c.toml:13", "`q`", "(0, 1]"]),
+        detect("detect: sensor angles of rank 2", (DETECT_SCENE, &format!("{CAM}analyzer_angles_deg = [0, 180, 90]\n")), vec![], &[], 3, &["c.toml:13", "`analyzer_angles_deg`", "rank"]),
+        detect("detect: sensor adc bits", (DETECT_SCENE, &CAM.replace("adc_bits = 12", "adc_bits = 40")), vec![], &[], 3, &["c.toml:10", "`adc_bits`", "1..=32"]),
+        detect("detect: sensor negative read noise", (DETECT_SCENE, &CAM.replace("read_noise_e = 2", "read_noise_e = -2")), vec![], &[], 3, &["c.toml:9", "`read_noise_e`"]),
+        detect("detect: sensor missing focal length", (DETECT_SCENE, &CAM.replace("focal_length_mm = 25\n", "")), vec![], &[], 3, &["c.toml", "`focal_length_mm`"]),
+        detect("detect: sensor band file missing", (DETECT_SCENE, &CAM.replace("band_lo_um = 0.45\nband_hi_um = 0.65\n", "band_response = \"none.csv\"\n")), vec![], &[], 3, &["c.toml:11", "`band_response`", "none.csv"]),
+        detect("detect: sensor QE table short of the band", (DETECT_SCENE, &CAM.replace("quantum_efficiency = 0.6", "quantum_efficiency_file = \"qe.csv\"")), vec![("qe.csv", t("wavelength_um,qe\n0.5,0.6\n0.7,0.5\n"))], &[], 3, &["c.toml:6", "`quantum_efficiency_file`", "does not cover"]),
+        detect("detect: sensor QE above 1", (DETECT_SCENE, &CAM.replace("quantum_efficiency = 0.6", "quantum_efficiency_file = \"qe.csv\"")), vec![("qe.csv", t("wavelength_um,qe\n0.4,0.6\n0.7,1.5\n"))], &[], 3, &["qe.csv:3", "`qe`"]),
+        detect("detect: NEL sensor without NEL", (DETECT_SCENE, "noise_model = \"nel\"\nr = 0\npixel_pitch_um = 12\nfocal_length_mm = 25\nband_lo_um = 8\nband_hi_um = 12\n"), vec![], &[], 3, &["c.toml", "`nel_w_per_m2_sr` or `netd_mk`"]),
+        case("detect: sensor file missing", vec![("s.toml", t(DETECT_SCENE))], &["detect", "--scene", "{d}/s.toml", "--sensor", "{d}/none.toml", "--theta-deg", "30", "--out", "{d}/out"], 4, &["none.toml"]),
+        detect("detect: path extinction and visibility", (&format!("{DETECT_SCENE}[path]\nextinction_per_m = 1e-4\nvisibility_km = 20\nhorizon_radiance = 10\n"), CAM), vec![], &[], 3, &["s.toml:11", "`path.visibility_km`", "not both"]),
+        detect("detect: path without horizon", (&format!("{DETECT_SCENE}[path]\nvisibility_km = 20\n"), CAM), vec![], &[], 3, &["s.toml:9", "`path`", "horizon"]),
+        detect("detect: path negative visibility", (&format!("{DETECT_SCENE}[path]\nvisibility_km = -2\nhorizon_radiance = 1\n"), CAM), vec![], &[], 3, &["s.toml:10", "`path.visibility_km`"]),
+        detect("detect: path table not increasing", (&format!("{DETECT_SCENE}[path]\ntable = \"p.csv\"\n"), CAM), vec![("p.csv", t("range_m,transmittance,path_radiance\n100,0.9,1\n50,0.8,2\n"))], &[], 3, &["s.toml:10", "p.csv:3", "range_m", "increase"]),
+        detect("detect: range beyond the path table", (&format!("{DETECT_SCENE}[path]\ntable = \"p.csv\"\n"), CAM), vec![("p.csv", t("range_m,transmittance,path_radiance\n50,0.9,1\n100000,0.1,2\n"))], &["--ranges-m", "200000"], 3, &["--ranges-m", "200000", "beyond"]),
+        detect("detect: scene atmosphere", (&format!("{DETECT_SCENE}[atmosphere]\ntransmittance = 0.5\n"), CAM), vec![], &[], 3, &["s.toml", "[atmosphere]", "[path]"]),
+        detect("detect: pfa 2", (DETECT_SCENE, CAM), vec![], &["--pfa", "2"], 3, &["--pfa", "(0, 1)"]),
+        detect("detect: negative range", (DETECT_SCENE, CAM), vec![], &["--ranges-m", "-5"], 3, &["--ranges-m", "> 0"]),
+        detect("detect: unknown feature", (DETECT_SCENE, CAM), vec![], &["--features", "aolp"], 3, &["--features", "aolp"]),
+        detect("detect: sun below the horizon", (DETECT_SCENE, CAM), vec![], &["--sun-deg", "95,0"], 3, &["sun_zenith_deg", "95"]),
         // Outputs (issue 18): an output that is an input or another output, a directory, .npy
         // (read-only, linked, device and FIFO outputs: tests/outputs.rs).
         case("eval: output is the input", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/g.csv"], 3, &["g.csv", "same file as the input"]),

@@ -369,6 +369,16 @@ pub fn parse_sensor(text: &str, path: &Path) -> Result<SensorFile> {
     for (key, value) in table {
         let line = line_of(text, key.span().start);
         let name = key.get_ref().as_str();
+        if matches!(value.get_ref(), Value::Table(_)) {
+            return Err(Error::Field {
+                path: path.to_path_buf(),
+                line,
+                field: short_name(name),
+                message: "tables are not allowed in a sensor file: every key is a plain name \
+                          (`f_number = 2.8`)"
+                    .into(),
+            });
+        }
         let Some(k) = KEYS.iter().find(|k| k.0 == name) else {
             let known: Vec<&str> = KEYS.iter().map(|k| k.0).collect();
             return Err(Error::Field {
