@@ -131,7 +131,7 @@ impl Axes<'_> {
 
 /// The rows of one material (`polbrdf lut`'s table for that material, and Python's
 /// `polbrdf.xarray.lut` block): per wavelength, the geometries of `axes` in C order
-/// (θi, θr, Δφ), in blocks of at most [`BLOCK`] rows handed to `sink` (row-major, the columns
+/// (θi, θr, Δφ), in blocks of at most `BLOCK` rows handed to `sink` (row-major, the columns
 /// of [`columns`]). Each block is one engine call with the index at the wavelength of every
 /// element, so the CLI and Python give the same values bit for bit.
 ///
