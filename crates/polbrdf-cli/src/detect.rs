@@ -257,16 +257,25 @@ fn figures(files: &mut Vec<OutputFile>, study: &DetectStudy) -> Result<(), CliEr
             .into_iter()
             .map(|r| r.min(limit))
             .collect();
+        // The scale ends at the longest range found (rounded up), not at the search limit, so
+        // that the map resolves the ranges it has; a view beyond the limit lifts it to the limit.
+        let top = polbrdf_plot::nice_ceil(
+            ranges
+                .iter()
+                .copied()
+                .filter(|r| r.is_finite())
+                .fold(0.0, f64::max),
+        );
         figs.push((
             "max_range",
             single(PolarPanel {
                 title: format!(
-                    "Detection range, m (P_d ≥ {}, P_fa = {}; grey: not detectable)",
+                    "Detection range (P_d ≥ {}, P_fa = {}; grey: none)",
                     short(study.detector.criteria.pd_required),
                     study.detector.criteria.pfa
                 ),
                 grid: polar_grid(grid, ranges)?,
-                scale: ColorScale::linear(Colormap::Viridis, 0.0, limit, "range (m)"),
+                scale: ColorScale::linear(Colormap::Viridis, 0.0, top.min(limit), "range (m)"),
                 marks: Vec::new(),
             }),
         ));
