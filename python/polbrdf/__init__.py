@@ -55,6 +55,7 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
         "source folder python/polbrdf instead of the installed package (run from elsewhere)."
     ) from _e
 
+from .detection import DetectFrame, DetectStudy, detect, detect_frame
 from .jobs import (
     CheckReport,
     Measurements,
@@ -86,6 +87,8 @@ __all__ = [
     "Band",
     "CheckReport",
     "ContrastStudy",
+    "DetectFrame",
+    "DetectStudy",
     "Emissivity",
     "Evaluation",
     "FitResult",
@@ -107,6 +110,8 @@ __all__ = [
     "brightness_temperature",
     "check",
     "contrast",
+    "detect",
+    "detect_frame",
     "dolp",
     "emissivity",
     "evaluate",
