@@ -69,7 +69,7 @@ from .jobs import (
     read_pbsdf,
 )
 from .scene import Atmosphere, Band, PathToSensor, Scene, SceneObject, Sky, Sun, Surface
-from .sun import sun_position
+from .sun import DaytimeStudy, daytime, sun_position
 from .tasks import (
     AlbedoTable,
     ContrastStudy,
@@ -87,6 +87,7 @@ __all__ = [
     "Band",
     "CheckReport",
     "ContrastStudy",
+    "DaytimeStudy",
     "DetectFrame",
     "DetectStudy",
     "Emissivity",
@@ -110,6 +111,7 @@ __all__ = [
     "brightness_temperature",
     "check",
     "contrast",
+    "daytime",
     "detect",
     "detect_frame",
     "dolp",

@@ -47,6 +47,7 @@ __all__ = [
     "check_task",
     "cli_main",
     "contrast_task",
+    "daytime_task",
     "derivative_step",
     "detect_task",
     "emission_task",
@@ -448,6 +449,21 @@ def sun_task(
     phi0_azimuth_deg: float | None,
 ) -> str:
     """The task layer's sun position (``polbrdf sun``): its JSON document."""
+def daytime_task(
+    scene_file: str | PathLike[str] | None,
+    scene_text: tuple[str, str] | None,
+    sensor: str | PathLike[str] | None,
+    target: str | None,
+    background: str | None,
+    date: str | None,
+    times: list[str] | None,
+    range: tuple[str, str, float],
+    grid_deg: tuple[float, float] | None,
+    fixed_view_deg: tuple[float, float],
+    criteria: tuple[float | None, float | None, float | None, float | None],
+) -> tuple[list[str], list[str], NDArray[np.float64]]:
+    """A time-of-day sweep as ``polbrdf daytime`` runs it: the columns after ``date_time``,
+    the rows' date-times and the table; use :func:`polbrdf.daytime`."""
 def detect_task(
     scene_file: str | PathLike[str] | None,
     scene_text: tuple[str, str] | None,
