@@ -55,6 +55,7 @@ except ImportError as _e:  # pragma: no cover - only when the extension was neve
         "source folder python/polbrdf instead of the installed package (run from elsewhere)."
     ) from _e
 
+from .detection import DetectFrame, DetectStudy, detect, detect_frame
 from .jobs import (
     CheckReport,
     Measurements,
@@ -68,7 +69,7 @@ from .jobs import (
     read_pbsdf,
 )
 from .scene import Atmosphere, Band, PathToSensor, Scene, SceneObject, Sky, Sun, Surface
-from .sun import sun_position
+from .sun import DaytimeStudy, daytime, sun_position
 from .tasks import (
     AlbedoTable,
     ContrastStudy,
@@ -86,6 +87,9 @@ __all__ = [
     "Band",
     "CheckReport",
     "ContrastStudy",
+    "DaytimeStudy",
+    "DetectFrame",
+    "DetectStudy",
     "Emissivity",
     "Evaluation",
     "FitResult",
@@ -107,6 +111,9 @@ __all__ = [
     "brightness_temperature",
     "check",
     "contrast",
+    "daytime",
+    "detect",
+    "detect_frame",
     "dolp",
     "emissivity",
     "evaluate",

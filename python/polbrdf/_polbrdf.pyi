@@ -22,9 +22,10 @@ _Quantity: TypeAlias = Literal[
 ]  # fmt: skip
 _RankBy: TypeAlias = Literal["delta-dolp", "polarization-contrast"]
 _LutQuantity: TypeAlias = Literal["mueller", "brdf", "dolp", "aolp"]
+_Feature: TypeAlias = Literal["s0", "dolp", "s0+dolp"]
 _VocabularySet: TypeAlias = Literal[
     "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key",
-    "rank_by", "lut_quantity",
+    "rank_by", "lut_quantity", "feature",
 ]
 
 DEFAULT_DOP_MAX: float
@@ -46,7 +47,9 @@ __all__ = [
     "check_task",
     "cli_main",
     "contrast_task",
+    "daytime_task",
     "derivative_step",
+    "detect_task",
     "emission_task",
     "emissivity_flat",
     "evaluate_flat",
@@ -446,6 +449,42 @@ def sun_task(
     phi0_azimuth_deg: float | None,
 ) -> str:
     """The task layer's sun position (``polbrdf sun``): its JSON document."""
+def daytime_task(
+    scene_file: str | PathLike[str] | None,
+    scene_text: tuple[str, str] | None,
+    sensor: str | PathLike[str] | None,
+    target: str | None,
+    background: str | None,
+    date: str | None,
+    times: list[str] | None,
+    range: tuple[str, str, float],
+    grid_deg: tuple[float, float] | None,
+    fixed_view_deg: tuple[float, float],
+    criteria: tuple[float | None, float | None, float | None, float | None],
+) -> tuple[list[str], list[str], NDArray[np.float64]]:
+    """A time-of-day sweep as ``polbrdf daytime`` runs it: the columns after ``date_time``,
+    the rows' date-times and the table; use :func:`polbrdf.daytime`."""
+def detect_task(
+    scene_file: str | PathLike[str] | None,
+    scene_text: tuple[str, str] | None,
+    sensor: str | PathLike[str],
+    target: str | None,
+    background: str | None,
+    grid_deg: tuple[float, float] | None,
+    views: list[tuple[float, float]] | None,
+    ranges_m: list[float],
+    search: bool,
+    range_limit_m: float,
+    area_m2: float,
+    pfa: float,
+    pd: float,
+    features: list[_Feature],
+    sun_deg: tuple[float, float] | None,
+    frame_seed: int | None,
+) -> dict[str, Any]:
+    """A detection study as ``polbrdf detect`` runs it (``frame_seed``: with ``--frame``): the
+    rows of ``detect.csv`` as arrays, ``best.json`` as JSON text, the frame's arrays; use
+    :func:`polbrdf.detect`."""
 
 def bridge_flat(
     name: str,

@@ -1,15 +1,26 @@
 """The sun's position from a date, a time and a place (docs/sun-position.md): NREL's Solar
 Position Algorithm (Reda & Andreas 2008, ±0.0003°) through the task layer, the numbers of
-``polbrdf sun`` bit for bit."""
+``polbrdf sun`` bit for bit; and the time-of-day sweep of a scene (:func:`daytime`), the
+numbers of ``polbrdf daytime``'s ``daytime.csv`` bit for bit."""
 
 from __future__ import annotations
 
 import json
-from typing import Any
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
 
 from . import _polbrdf
+from .scene import Scene
 
-__all__ = ["sun_position"]
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray
+
+__all__ = ["DaytimeStudy", "daytime", "sun_position"]
 
 
 def sun_position(
@@ -66,3 +77,142 @@ def sun_position(
         )
     )
     return doc
+
+
+@dataclass(frozen=True)
+class DaytimeStudy:
+    """The result of :func:`daytime`: ``daytime.csv``, one row per local time.
+
+    - ``date_time``: each row's local date-time (RFC 3339 with the scene's UTC offset);
+    - ``columns`` and ``table`` (``(times, len(columns))``): the CSV's columns after
+      ``date_time``, every one a number (NaN where the sun is down), also reachable as
+      ``study["best_delta_dolp"]``; with a sensor the detection ranges ``best_max_range_m``
+      and ``fixed_max_range_m`` (m; ``inf`` beyond the search's limit, 0 when not
+      detectable) and the view of the longest range.
+    """
+
+    date_time: NDArray[np.str_]
+    columns: tuple[str, ...]
+    table: NDArray[np.float64] = field(repr=False)
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        return self.table[:, self.columns.index(name)]
+
+    def __len__(self) -> int:
+        return len(self.date_time)
+
+    def to_xarray(self) -> xarray.Dataset:
+        """The columns as an :class:`xarray.Dataset` over ``local_time_h`` (with ``date_time``
+        as a coordinate). Needs ``xarray``: ``pip install "polbrdf[xarray]"``."""
+        try:
+            import xarray as xr
+        except ImportError as e:
+            raise ImportError('to_xarray() needs xarray: pip install "polbrdf[xarray]"') from e
+        dim = "local_time_h"
+        return xr.Dataset(
+            {c: (dim, self[c]) for c in self.columns if c != dim},
+            coords={dim: self[dim], "date_time": (dim, self.date_time)},
+        )
+
+
+def daytime(
+    scene: Scene | str | os.PathLike[str],
+    *,
+    sensor: str | os.PathLike[str] | None = None,
+    target: str | os.PathLike[str] | None = None,
+    background: str | os.PathLike[str] | None = None,
+    date: str | None = None,
+    from_: str = "06:00",
+    to: str = "18:00",
+    step_min: float = 30.0,
+    times: Sequence[str] | None = None,
+    grid_deg: float | Sequence[float] | None = None,
+    fixed_view_deg: Sequence[float] = (0.0, 0.0),
+    area_m2: float | None = None,
+    pfa: float | None = None,
+    pd: float | None = None,
+    range_limit_m: float | None = None,
+) -> DaytimeStudy:
+    """A scene whose sun is placed by date, time and place, swept through the day:
+    ``polbrdf daytime`` (docs/sun-position.md).
+
+    Parameters
+    ----------
+    scene : Scene, or str or path
+        The scene (``--scene``), its ``[sun]`` placed by ``date_time``, ``latitude_deg`` and
+        ``longitude_deg``.
+    sensor : str or path, optional
+        A sensor file (``--sensor``): adds the detection range of the best view and of the
+        fixed view.
+    target, background : str or path, optional
+        A material file or preset replacing the scene's.
+    date : str, optional
+        ``YYYY-MM-DD`` (default: the date of the scene's ``date_time``).
+    from_, to, step_min
+        Local times ``HH:MM`` (the scene's UTC offset) from ``from_`` (``--from``; ``from`` is
+        a Python keyword) to ``to``, every ``step_min`` minutes (defaults 06:00, 18:00, 30).
+    times : sequence of str, optional
+        Listed local times instead (``--times``).
+    grid_deg : float or (float, float), optional
+        The grid of every time's study (default 5°, 10°).
+    fixed_view_deg : (float, float)
+        The fixed view θr, φr in degrees (default nadir).
+    area_m2, pfa, pd, range_limit_m : float, optional
+        With a sensor: as :func:`polbrdf.detect` (same defaults).
+
+    Raises
+    ------
+    ValueError
+        For a bad argument, naming the keyword (also as the exception's ``argument``); for a
+        bad scene or sensor file, naming file, line and key.
+    """
+    scene_file = scene_text = None
+    if isinstance(scene, Scene):
+        scene_text = (scene.to_toml(), "<polbrdf.Scene>")
+    elif isinstance(scene, (str, os.PathLike)):
+        scene_file = os.fspath(scene)
+    else:
+        raise TypeError(
+            f"`scene` must be a polbrdf.Scene or the path of a scene file, not "
+            f"{type(scene).__name__}"
+        )
+    given = {"area_m2": area_m2, "pfa": pfa, "pd": pd, "range_limit_m": range_limit_m}
+    if sensor is None:
+        for name, value in given.items():
+            if value is not None:
+                e = ValueError(f"invalid `{name}`: a detection option: give `sensor` too")
+                e.argument = name  # type: ignore[attr-defined]
+                raise e
+    grid = None
+    if grid_deg is not None:
+        g = [float(x) for x in np.atleast_1d(np.asarray(grid_deg, dtype=np.float64))]
+        if len(g) not in (1, 2):
+            e = ValueError(f"invalid `grid_deg`: expected one or two steps, got {len(g)}")
+            e.argument = "grid_deg"  # type: ignore[attr-defined]
+            raise e
+        grid = (g[0], g[-1])
+    fixed = [float(x) for x in fixed_view_deg]
+    if len(fixed) != 2:
+        e = ValueError(f"invalid `fixed_view_deg`: expected (theta, phi), got {len(fixed)} values")
+        e.argument = "fixed_view_deg"  # type: ignore[attr-defined]
+        raise e
+    try:
+        columns, date_times, table = _polbrdf.daytime_task(
+            scene_file,
+            scene_text,
+            None if sensor is None else os.fspath(sensor),
+            None if target is None else os.fspath(target),
+            None if background is None else os.fspath(background),
+            date,
+            None if times is None else [str(t) for t in times],
+            (str(from_), str(to), float(step_min)),
+            grid,
+            (fixed[0], fixed[1]),
+            tuple(None if v is None else float(v) for v in given.values()),
+        )
+    except ValueError as e:
+        # `from` is a Python keyword: its keyword here is `from_`.
+        if getattr(e, "argument", None) == "from":
+            e.argument = "from_"  # type: ignore[attr-defined]
+        raise
+    return DaytimeStudy(np.array(date_times, dtype=np.str_), tuple(columns), table)

@@ -29,6 +29,8 @@
 mod bridges;
 mod buffers;
 mod cli;
+mod daytime;
+mod detect;
 mod errors;
 mod evaluation;
 mod fit;
@@ -72,6 +74,8 @@ fn _polbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(jobs::read_measurements_task, m)?)?;
     m.add_function(wrap_pyfunction!(fit::fit_measurements_task, m)?)?;
     m.add_function(wrap_pyfunction!(tasks::sun_task, m)?)?;
+    m.add_function(wrap_pyfunction!(detect::detect_task, m)?)?;
+    m.add_function(wrap_pyfunction!(daytime::daytime_task, m)?)?;
     m.add_function(wrap_pyfunction!(bridges::bridge_flat, m)?)?;
     m.add(
         "DEFAULT_DOP_MAX",

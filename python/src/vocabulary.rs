@@ -4,6 +4,7 @@
 //! these, so that neither can drift.
 
 use polbrdf::analysis::contrast::Ranking;
+use polbrdf::analysis::detection::Feature;
 use polbrdf::engine::Precision;
 use polbrdf::{AzimuthTerm, Form};
 use polbrdf_fit::fit::Observable;
@@ -18,7 +19,7 @@ pub(crate) const LAYOUTS: [&str; 2] = ["interleaved", "planar"];
 /// (material keys), `precision`, `layout`, `sky` (the scene files' sky models), `quantity`
 /// (what a fit takes as measured), `parameter` (what a fit frees), `scene_key` (every key and
 /// table of a scene file, dotted), `rank_by` (the scores of a contrast's ranking),
-/// `lut_quantity` (the quantities of a lookup table).
+/// `lut_quantity` (the quantities of a lookup table), `feature` (what a detector may use).
 #[pyfunction]
 pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
     let names = |it: &mut dyn Iterator<Item = &'static str>| it.map(String::from).collect();
@@ -43,6 +44,10 @@ pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
         (
             "rank_by",
             names(&mut Ranking::ALL.iter().map(|r| r.as_str())),
+        ),
+        (
+            "feature",
+            names(&mut Feature::ALL.iter().map(|f| f.as_str())),
         ),
         (
             "lut_quantity",

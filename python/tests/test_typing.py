@@ -29,6 +29,7 @@ ALIASES = {
     "_Quantity": "quantity",
     "_RankBy": "rank_by",
     "_LutQuantity": "lut_quantity",
+    "_Feature": "feature",
 }
 
 
@@ -65,6 +66,7 @@ def test_the_python_layer_s_sets_are_the_extension_s() -> None:
     vocabulary = _polbrdf.vocabulary()
     assert list(typing.get_args(polbrdf.scene.SkyModel)) == vocabulary["sky"]
     assert list(typing.get_args(polbrdf.tasks.RankBy)) == vocabulary["rank_by"]
+    assert list(typing.get_args(polbrdf.detection.Feature)) == vocabulary["feature"]
     assert vocabulary["layout"] == ["interleaved", "planar"]
 
 

@@ -57,36 +57,68 @@ fn num(v: f64) -> Value {
     serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
 }
 
+/// One row of `detect.csv` (a view at a range), as values: what [`DetectStudy::csv`] prints and
+/// the adapters hand over as arrays.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DetectRow {
+    /// The numeric columns of [`COLUMNS`] up to `pd`, in their order (11 values).
+    pub values: [f64; 11],
+    /// The feature of this row's `d'` (`feature`).
+    pub feature: &'static str,
+    /// Whether a channel saturated (`saturated`).
+    pub saturated: bool,
+    /// The view's detection range ([`max_range_text`]: a number, `"beyond"`, `"not
+    /// detectable"`, or empty when not searched).
+    pub max_range: Option<MaxRange>,
+    /// The feature detecting at the view's detection range (empty when none).
+    pub max_range_feature: &'static str,
+}
+
 impl DetectStudy {
+    /// The rows of `detect.csv`: one per view and range, view-major.
+    pub fn table_rows(&self) -> impl Iterator<Item = DetectRow> + '_ {
+        self.views.iter().flat_map(|v| {
+            v.at_ranges.iter().map(move |d| {
+                let (pc, snr_pc) = polarization_contrast(d);
+                DetectRow {
+                    values: [
+                        deg(v.theta_r),
+                        deg(v.phi_r),
+                        d.range_m,
+                        d.pixels,
+                        d.scores.s0,
+                        d.scores.dolp,
+                        d.scores.combined,
+                        pc,
+                        snr_pc,
+                        d.d_prime_n,
+                        d.pd,
+                    ],
+                    feature: d.feature.as_str(),
+                    saturated: d.saturated,
+                    max_range: v.max_range,
+                    max_range_feature: match v.max_range {
+                        Some(MaxRange::At { feature, .. }) => feature.as_str(),
+                        _ => "",
+                    },
+                }
+            })
+        })
+    }
+
     /// `detect.csv`: one row per view and range, the values of [`COLUMNS`] (docs/detection.md).
     pub fn csv(&self) -> Vec<u8> {
         let f = polbrdf_io::csv_io::fmt_f64;
         let mut t = polbrdf_io::CsvTable::new(COLUMNS);
-        for v in &self.views {
-            for d in &v.at_ranges {
-                let (pc, snr_pc) = polarization_contrast(d);
-                let feature = match v.max_range {
-                    Some(MaxRange::At { feature, .. }) => feature.as_str(),
-                    _ => "",
-                };
-                t.fields([
-                    f(deg(v.theta_r)),
-                    f(deg(v.phi_r)),
-                    f(d.range_m),
-                    f(d.pixels),
-                    f(d.scores.s0),
-                    f(d.scores.dolp),
-                    f(d.scores.combined),
-                    f(pc),
-                    f(snr_pc),
-                    f(d.d_prime_n),
-                    f(d.pd),
-                    d.feature.as_str().to_string(),
-                    u8::from(d.saturated).to_string(),
-                    max_range_text(v.max_range),
-                    feature.to_string(),
-                ]);
-            }
+        for r in self.table_rows() {
+            let mut fields: Vec<String> = r.values.iter().map(|x| f(*x)).collect();
+            fields.extend([
+                r.feature.to_string(),
+                u8::from(r.saturated).to_string(),
+                max_range_text(r.max_range),
+                r.max_range_feature.to_string(),
+            ]);
+            t.fields(fields);
         }
         t.into_bytes()
     }
