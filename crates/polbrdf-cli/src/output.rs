@@ -129,6 +129,8 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("daytime", "target", Role::Input),
     ("daytime", "background", Role::Input),
     ("daytime", "out", Role::Dir),
+    // The explorer's built page: a folder only read (served), never written.
+    ("explore", "dir", Role::Input),
 ];
 
 /// The paths of `command`'s options of `role` given on its command line `m`.
