@@ -39,7 +39,10 @@ pub use pbsdf::{write_pbsdf, PbsdfTable};
 pub use refractive::{
     parse_refractiveindex_yaml, parse_refractiveindex_yaml_bytes, read_refractiveindex_yaml,
 };
-pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, SceneValue};
+pub use scene::{
+    parse_scene, parse_scene_with_files, read_scene, read_scene_keys, Scene, SceneObject,
+    SceneValue,
+};
 pub use sensor::{parse_sensor, read_sensor, SensorFile};
 pub use tensorfile::TensorFile;
 pub use units::{material_warnings, AngleScan, UnitWarning};

@@ -76,6 +76,7 @@
 //! in `KEYS` and an arm of the match in `sky`.
 
 use crate::csv_io::{line_of, read_text, toml_message};
+use crate::csv_io::{parse_band_csv, parse_sky_profile_csv, parse_sky_table_csv};
 use crate::csv_io::{read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_name, show};
 use crate::error::{Error, Result};
 use crate::material::load_material;
@@ -495,6 +496,9 @@ struct Doc<'a> {
     found: BTreeMap<&'static str, (usize, Value)>,
     /// The files read so far (see [`Scene::files`]).
     files: std::cell::RefCell<Vec<PathBuf>>,
+    /// The named files' texts by their resolved path ([`parse_scene_with_files`]): read from
+    /// here rather than from the file system. `None`: the file system.
+    texts: Option<&'a BTreeMap<PathBuf, String>>,
 }
 
 impl<'a> Doc<'a> {
@@ -505,6 +509,7 @@ impl<'a> Doc<'a> {
             folder: path.parent().filter(|p| !p.as_os_str().is_empty()),
             found: BTreeMap::new(),
             files: std::cell::RefCell::new(Vec::new()),
+            texts: None,
         };
         let top: SpannedTable = toml::from_str(text).map_err(|e| doc.syntax(e, text, text))?;
         // The top level, in file order. Then the tables' keys: `toml::Value` keeps no position
@@ -724,9 +729,41 @@ impl<'a> Doc<'a> {
         }
     }
 
-    /// The file that `key` names, read by `read`; its errors wrapped in one naming `key`.
-    /// `None` when `key` is absent.
-    fn read_file<T>(&self, key: &str, read: impl FnOnce(&Path) -> Result<T>) -> Result<Option<T>> {
+    /// The file `file`: read by `read` from the file system, or parsed by `parse` from its
+    /// text given to [`parse_scene_with_files`] (a file not given there is an error).
+    fn load<T>(
+        &self,
+        file: &Path,
+        read: impl FnOnce(&Path) -> Result<T>,
+        parse: impl FnOnce(&[u8], &Path) -> Result<T>,
+    ) -> Result<T> {
+        let Some(texts) = self.texts else {
+            return read(file);
+        };
+        match texts.get(file) {
+            Some(text) => parse(text.as_bytes(), file),
+            None => Err(Error::File {
+                path: file.to_path_buf(),
+                message: format!(
+                    "no such file (the files given: {})",
+                    texts
+                        .keys()
+                        .map(|k| k.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            }),
+        }
+    }
+
+    /// The file that `key` names, read by `read` (or parsed by `parse`, [`Doc::load`]); its
+    /// errors wrapped in one naming `key`. `None` when `key` is absent.
+    fn read_file<T>(
+        &self,
+        key: &str,
+        read: impl FnOnce(&Path) -> Result<T>,
+        parse: impl FnOnce(&[u8], &Path) -> Result<T>,
+    ) -> Result<Option<T>> {
         let Some(name) = self.text(key) else {
             return Ok(None);
         };
@@ -735,7 +772,7 @@ impl<'a> Doc<'a> {
         }
         let file = self.resolve(name);
         self.files.borrow_mut().push(file.clone());
-        read(&file)
+        self.load(&file, read, parse)
             .map(Some)
             .map_err(|e| self.error(key, e.to_string()))
     }
@@ -808,7 +845,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
                 }
             }
             let band = doc
-                .read_file("band.response", read_band_csv)?
+                .read_file("band.response", read_band_csv, parse_band_csv)?
                 .ok_or_else(|| {
                     doc.error(
                     "band",
@@ -887,14 +924,18 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
     let spec = if crate::material::names_a_file(arg) {
         let file = doc.resolve(arg);
         doc.files.borrow_mut().push(file.clone());
-        match file.to_str() {
+        let read = |file: &Path| match file.to_str() {
             Some(f) if crate::material::names_a_file(f) => load_material(f),
             Some(f) => load_material(&format!("./{f}")),
             None => Err(Error::File {
-                path: file.clone(),
+                path: file.to_path_buf(),
                 message: "the path is not valid UTF-8".into(),
             }),
-        }
+        };
+        let parse = |bytes: &[u8], file: &Path| {
+            crate::material::parse_material(&String::from_utf8_lossy(bytes), file)
+        };
+        doc.load(&file, read, parse)
     } else {
         load_material(arg)
     }
@@ -1195,7 +1236,7 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
             temperature_k: doc.required_number(name, "sky.temperature_k")?,
         },
         SkyKind::Profile => SkyModel::Profile(
-            doc.read_file("sky.file", read_sky_profile_csv)?
+            doc.read_file("sky.file", read_sky_profile_csv, parse_sky_profile_csv)?
                 .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
         ),
         SkyKind::ClearSky => {
@@ -1218,7 +1259,7 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
             }
         }
         SkyKind::Table => SkyModel::Table(
-            doc.read_file("sky.file", read_sky_table_csv)?
+            doc.read_file("sky.file", read_sky_table_csv, parse_sky_table_csv)?
                 .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
         ),
     })
@@ -1261,7 +1302,11 @@ fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
         ] {
             exclusive("path.table", k)?;
         }
-        let table = doc.read_file("path.table", crate::detection_csv::read_path_csv)?;
+        let table = doc.read_file(
+            "path.table",
+            crate::detection_csv::read_path_csv,
+            crate::detection_csv::parse_path_csv,
+        )?;
         return Ok(table.map(PathSpec::Table));
     }
     exclusive("path.extinction_per_m", "path.visibility_km")?;
@@ -1316,9 +1361,30 @@ fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
 /// parsed (the message then holds that file's own error);
 /// [`Error::File`] when neither `wavelength_um` nor `[band]` is given.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
+    scene_of(text, path, None)
+}
+
+/// Parses a scene file's text as [`parse_scene`] does, with the files it names (band, sky
+/// profile or table, materials, path table) taken from `files` — their texts by the path the
+/// reader resolves them to (relative to `path`'s folder) — instead of the file system: for an
+/// adapter without one (the web explorer). A named file missing from `files` is an error naming
+/// it; a material's refractive-index file is still read from the file system.
+///
+/// # Errors
+/// As [`parse_scene`].
+pub fn parse_scene_with_files(
+    text: &str,
+    path: &Path,
+    files: &BTreeMap<PathBuf, String>,
+) -> Result<Scene> {
+    scene_of(text, path, Some(files))
+}
+
+fn scene_of(text: &str, path: &Path, texts: Option<&BTreeMap<PathBuf, String>>) -> Result<Scene> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let text = &*crate::csv_io::lone_cr_to_lf(text);
-    let doc = Doc::parse(text, path)?;
+    let mut doc = Doc::parse(text, path)?;
+    doc.texts = texts;
     let spectrum = spectrum(&doc)?;
     let sun = sun(&doc)?;
     let sun_time = if sun.is_some() { sun_time(&doc)? } else { None };

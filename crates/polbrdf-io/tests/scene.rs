@@ -342,6 +342,63 @@ fn relative_files_are_found_from_the_scene_folder() {
     assert!(e.to_string().contains("data/lwir.csv: cannot read"), "{e}");
 }
 
+#[test]
+fn files_given_as_texts_read_as_the_same_files_on_disk() {
+    // The scene the web explorer writes: its band and materials beside it, given as texts.
+    let scene = "[band]\nresponse = \"band.csv\"\nstep_um = 0.5\n[target]\n\
+                 material = \"target.toml\"\ntemperature_k = 305\n[background]\n\
+                 material = \"glass\"\n[sky]\nmodel = \"profile\"\nfile = \"sky.csv\"\n";
+    let target = "name = \"panel\"\nn = 1.5\nk = 0.1\nsigma_deg = 5\n";
+    let (_d, p) = folder(
+        &[
+            ("band.csv", BAND.as_bytes()),
+            ("target.toml", target.as_bytes()),
+            ("sky.csv", SKY.as_bytes()),
+        ],
+        "scene.toml",
+        scene.as_bytes(),
+    );
+    let on_disk = read_scene(&p).unwrap();
+    let texts: std::collections::BTreeMap<PathBuf, String> = [
+        ("band.csv", BAND),
+        ("target.toml", target),
+        ("sky.csv", SKY),
+    ]
+    .into_iter()
+    .map(|(f, t)| (PathBuf::from(f), t.to_string()))
+    .collect();
+    let given = polbrdf_io::parse_scene_with_files(scene, Path::new("scene.toml"), &texts).unwrap();
+    assert_eq!(given.spectrum, on_disk.spectrum);
+    assert_eq!(given.thermal, on_disk.thermal);
+    assert_eq!(given.target, on_disk.target);
+    assert_eq!(given.background, on_disk.background);
+    assert_eq!(given.target.material.as_ref().unwrap().1, "panel");
+    // An error inside a given file names that file and its line, within the scene's key.
+    let mut bad = texts.clone();
+    bad.insert(
+        "band.csv".into(),
+        "wavelength_um,response\n8,1\n7,1\n".into(),
+    );
+    let e = polbrdf_io::parse_scene_with_files(scene, Path::new("scene.toml"), &bad)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("scene.toml:2: field `band.response`: band.csv:3"),
+        "{e}"
+    );
+    // A file the scene names that is not given: an error naming it and the files given.
+    let mut bad = texts.clone();
+    bad.remove(Path::new("sky.csv"));
+    let e = polbrdf_io::parse_scene_with_files(scene, Path::new("scene.toml"), &bad)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("field `sky.file`")
+            && e.contains("sky.csv: no such file (the files given: band.csv, target.toml)"),
+        "{e}"
+    );
+}
+
 /// One bad input: the scene text (and files beside it), where the error points and what it
 /// says.
 struct Case {
