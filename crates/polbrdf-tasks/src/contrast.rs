@@ -6,7 +6,7 @@
 use crate::error::{TaskError, TaskResult};
 use crate::hemisphere::{deg, view_grid, LightRequest};
 use crate::scene::{contrast_warnings, observer, read_scene, Warning};
-use crate::spectrum::{materials_at, NamedMaterial, SpectralRequest};
+use crate::spectrum::{materials_at, NamedMaterial, SpectralRequest, SpectrumSource};
 use polbrdf::analysis::contrast::{
     polarization_null, Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
@@ -326,7 +326,7 @@ pub fn contrast_of(
     target: NamedMaterial,
     background: NamedMaterial,
     light: &LightRequest,
-    spectral: &SpectralRequest,
+    spectral: &impl SpectrumSource,
     grid_deg: (f64, f64),
     rank: RankRequest,
 ) -> TaskResult<ContrastStudy> {

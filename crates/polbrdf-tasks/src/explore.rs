@@ -8,7 +8,7 @@
 
 use crate::error::TaskResult;
 use crate::hemisphere::{deg, view_grid, LightRequest};
-use crate::spectrum::{material_at, NamedMaterial, SpectralRequest};
+use crate::spectrum::{material_at, NamedMaterial, SpectrumSource};
 use polbrdf::analysis::contrast::{Illumination, ViewGrid};
 use polbrdf::{Engine, GeometryBatch, Material, Mueller, Spectrum, Stokes};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -64,13 +64,13 @@ impl MuellerMap {
 /// wavelength or over the band of `spectral`, through the batch engine.
 ///
 /// # Errors
-/// As [`LightRequest::illumination`], [`view_grid`], [`SpectralRequest::spectrum`] and
+/// As [`LightRequest::illumination`], [`view_grid`], [`SpectrumSource::spectrum`] and
 /// [`material_at`] (validated in that order).
 pub fn mueller_map(
     material: &NamedMaterial,
     light: &LightRequest,
     grid_deg: (f64, f64),
-    spectral: &SpectralRequest,
+    spectral: &impl SpectrumSource,
 ) -> TaskResult<MuellerMap> {
     let light = light.illumination()?;
     let grid = view_grid(grid_deg)?;
@@ -156,7 +156,7 @@ pub const IN_PLANE_STEP_DEG: f64 = 0.5;
 pub fn in_plane(
     material: &NamedMaterial,
     light: &LightRequest,
-    spectral: &SpectralRequest,
+    spectral: &impl SpectrumSource,
 ) -> TaskResult<InPlane> {
     let light = light.illumination()?;
     let spectrum = spectral.spectrum()?;

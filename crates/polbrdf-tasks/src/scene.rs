@@ -43,6 +43,29 @@ pub fn read_scene(path: &Path) -> TaskResult<Scene> {
     Ok(polbrdf_io::read_scene(path)?)
 }
 
+/// Parses a scene file's text (named `file_name` in messages) whose named files (band, sky
+/// profile or table, materials) are given as `(name, text)` pairs rather than read from files:
+/// for an adapter without a file system (the web explorer). The reader is the command line's
+/// ([`polbrdf_io::parse_scene_with_files`]): the same checks and messages.
+///
+/// # Errors
+/// [`TaskError::Io`] naming the file, the line and the key (a named file not given is one).
+pub fn parse_scene_with_files(
+    text: &str,
+    file_name: &str,
+    files: &[(String, String)],
+) -> TaskResult<Scene> {
+    let files = files
+        .iter()
+        .map(|(name, text)| (std::path::PathBuf::from(name), text.clone()))
+        .collect();
+    Ok(polbrdf_io::parse_scene_with_files(
+        text,
+        Path::new(file_name),
+        &files,
+    )?)
+}
+
 /// The longest wavelength a spectrum reaches, µm.
 fn longest_wavelength(spectrum: &Spectrum) -> f64 {
     match spectrum {

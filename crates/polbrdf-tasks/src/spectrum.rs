@@ -3,7 +3,7 @@
 //! materials built at the spectrum's nodes with the weights of its mean (docs/model.md §15).
 
 use crate::error::{TaskError, TaskResult};
-use polbrdf::{Material, MaterialSpec, Spectrum};
+use polbrdf::{Band, Material, MaterialSpec, Spectrum};
 use std::path::{Path, PathBuf};
 
 /// At what wavelength(s) a job evaluates its materials: `wavelength_um` or a `band` (a CSV of
@@ -35,39 +35,96 @@ impl SpectralRequest {
     /// [`TaskError::Invalid`] (`wavelength_um`, `band_step_um`), [`TaskError::Usage`] for a
     /// wavelength and a band together, [`TaskError::Io`] for the band file.
     pub fn spectrum(&self) -> TaskResult<Option<Spectrum>> {
-        if self.wavelength_um.is_some() && self.band.is_some() {
-            return Err(TaskError::usage(
+        spectrum_of(
+            self.wavelength_um,
+            self.band
+                .as_ref()
+                .map(|p| move || polbrdf_io::read_band_csv(p)),
+            self.band_step_um,
+        )
+    }
+}
+
+/// Where a job's spectrum comes from: a [`SpectralRequest`] (a band file) or a
+/// [`SpectralText`] (a band file's text).
+pub trait SpectrumSource {
+    /// The validated spectrum; `None` when neither a wavelength nor a band is given.
+    ///
+    /// # Errors
+    /// As [`SpectralRequest::spectrum`].
+    fn spectrum(&self) -> TaskResult<Option<Spectrum>>;
+}
+
+impl SpectrumSource for SpectralRequest {
+    fn spectrum(&self) -> TaskResult<Option<Spectrum>> {
+        SpectralRequest::spectrum(self)
+    }
+}
+
+/// A [`SpectralRequest`] whose band is the text of a band file rather than its path: for an
+/// adapter without files (the web explorer). The same checks and messages, the band file's
+/// named by its name here.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SpectralText {
+    /// One wavelength, µm (finite, > 0). Excludes `band`.
+    pub wavelength_um: Option<f64>,
+    /// A band file (columns wavelength_um,response): its name (in messages) and its text.
+    pub band: Option<(String, String)>,
+    /// The band's largest quadrature step, µm (finite, > 0; default 1/16 of its width).
+    pub band_step_um: Option<f64>,
+}
+
+impl SpectrumSource for SpectralText {
+    fn spectrum(&self) -> TaskResult<Option<Spectrum>> {
+        spectrum_of(
+            self.wavelength_um,
+            self.band.as_ref().map(|(name, text)| {
+                move || polbrdf_io::parse_band_csv(text.as_bytes(), Path::new(name))
+            }),
+            self.band_step_um,
+        )
+    }
+}
+
+/// The spectrum of a wavelength or a band (read by `band` after the numbers are checked) with
+/// its quadrature step.
+fn spectrum_of(
+    wavelength_um: Option<f64>,
+    band: Option<impl FnOnce() -> polbrdf_io::Result<Band>>,
+    band_step_um: Option<f64>,
+) -> TaskResult<Option<Spectrum>> {
+    if wavelength_um.is_some() && band.is_some() {
+        return Err(TaskError::usage(
+            "wavelength_um",
+            "give one wavelength or a band, not both",
+        ));
+    }
+    if let Some(l) = wavelength_um {
+        if !(l.is_finite() && l > 0.0) {
+            return Err(TaskError::invalid(
                 "wavelength_um",
-                "give one wavelength or a band, not both",
+                format!("{l}: must be finite and > 0 (µm)"),
             ));
         }
-        if let Some(l) = self.wavelength_um {
-            if !(l.is_finite() && l > 0.0) {
-                return Err(TaskError::invalid(
-                    "wavelength_um",
-                    format!("{l}: must be finite and > 0 (µm)"),
-                ));
-            }
-            return Ok(Some(Spectrum::Wavelength(l)));
-        }
-        let Some(path) = &self.band else {
-            return Ok(None);
-        };
-        if let Some(s) = self.band_step_um {
-            if !(s.is_finite() && s > 0.0) {
-                return Err(TaskError::invalid(
-                    "band_step_um",
-                    format!("{s}: must be finite and > 0 (µm)"),
-                ));
-            }
-        }
-        let band = polbrdf_io::read_band_csv(path)?;
-        if let Some(s) = self.band_step_um {
-            band.check_step(s)
-                .map_err(|e| TaskError::invalid("band_step_um", e.to_string()))?;
-        }
-        Ok(Some(Spectrum::Band(band, self.band_step_um)))
+        return Ok(Some(Spectrum::Wavelength(l)));
     }
+    let Some(band) = band else {
+        return Ok(None);
+    };
+    if let Some(s) = band_step_um {
+        if !(s.is_finite() && s > 0.0) {
+            return Err(TaskError::invalid(
+                "band_step_um",
+                format!("{s}: must be finite and > 0 (µm)"),
+            ));
+        }
+    }
+    let band = band()?;
+    if let Some(s) = band_step_um {
+        band.check_step(s)
+            .map_err(|e| TaskError::invalid("band_step_um", e.to_string()))?;
+    }
+    Ok(Some(Spectrum::Band(band, band_step_um)))
 }
 
 /// The spectrum in words (` at λ = 0.55 µm`, ` over the band NAME (8–12 µm)`; empty for none),

@@ -188,3 +188,122 @@ fn the_contrast_of_materials_read_is_the_contrast_of_their_files() {
     .unwrap_err();
     assert_eq!(e.to_string(), "top: must be at least 1");
 }
+
+#[test]
+fn a_band_from_text_is_the_band_of_its_file_with_the_same_messages() {
+    use polbrdf_tasks::spectrum::{SpectralText, SpectrumSource};
+    let file = crate::common::example("lwir-8-12um.csv");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let by_file = SpectralRequest {
+        band: Some(file.clone()),
+        band_step_um: Some(0.25),
+        ..SpectralRequest::default()
+    };
+    let by_text = SpectralText {
+        band: Some(("lwir-8-12um.csv".into(), text)),
+        band_step_um: Some(0.25),
+        ..SpectralText::default()
+    };
+    assert_eq!(
+        SpectrumSource::spectrum(&by_text).unwrap(),
+        by_file.spectrum().unwrap()
+    );
+    // The explorer's map over the band: the same numbers from either (bit for bit).
+    let soil = NamedMaterial::load(
+        crate::common::example("soil-lwir.toml").to_str().unwrap(),
+        "material",
+    )
+    .unwrap();
+    let light = LightRequest::sun(30.0, 0.0);
+    let a = mueller_map(&soil, &light, (5.0, 10.0), &by_file).unwrap();
+    let b = mueller_map(&soil, &light, (5.0, 10.0), &by_text).unwrap();
+    assert_eq!(a.mueller, b.mueller);
+    // A band the file reader refuses (wavelengths not increasing): its message, naming the
+    // file and the line; and the step's, naming the field.
+    let bad = SpectralText {
+        band: Some((
+            "band.csv".into(),
+            "wavelength_um,response\n9,1\n8,1\n".into(),
+        )),
+        ..SpectralText::default()
+    };
+    let e = mueller_map(&soil, &light, (5.0, 10.0), &bad)
+        .unwrap_err()
+        .to_string();
+    let dir = tempfile::tempdir().unwrap();
+    let on_disk = SpectralRequest {
+        band: Some(write(
+            dir.path(),
+            "band.csv",
+            "wavelength_um,response\n9,1\n8,1\n",
+        )),
+        ..SpectralRequest::default()
+    };
+    let f = on_disk.spectrum().unwrap_err().to_string();
+    assert!(e.starts_with("band.csv:3"), "{e}");
+    assert_eq!(
+        e.split_once("band.csv").unwrap().1,
+        f.split_once("band.csv").unwrap().1
+    );
+    let step = SpectralText {
+        band_step_um: Some(-1.0),
+        ..by_text.clone()
+    };
+    assert_eq!(
+        SpectrumSource::spectrum(&step).unwrap_err().to_string(),
+        "band_step_um: -1: must be finite and > 0 (µm)"
+    );
+}
+
+#[test]
+fn a_scene_from_text_with_its_files_given_is_the_scene_of_the_files() {
+    // The scene the web explorer writes: a band, a sun, a sky, both temperatures, and the
+    // materials and the band beside it.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[band]\nresponse = \"band.csv\"\nstep_um = 0.5\n[sun]\nzenith_deg = 30\n\
+                 azimuth_deg = 20\nirradiance = 10\nstokes = [1, 0, 0, 0]\n[sky]\n\
+                 model = \"thermal\"\ntemperature_k = 250\n[atmosphere]\ntransmittance = 0.9\n\
+                 path_radiance = 0.5\n[target]\nmaterial = \"target.toml\"\ntemperature_k = 305\n\
+                 [background]\nmaterial = \"background.toml\"\ntemperature_k = 300\n";
+    let band = "wavelength_um,response\n8,1\n12,1\n";
+    let glass = "n = 1.52\nsigma_deg = 5\n";
+    let path = write(dir.path(), "scene.toml", scene);
+    write(dir.path(), "band.csv", band);
+    write(dir.path(), "target.toml", PAINT);
+    write(dir.path(), "background.toml", glass);
+    let rank = RankRequest {
+        top: 3,
+        ..RankRequest::default()
+    };
+    let request = |source| ContrastRequest {
+        target: None,
+        background: None,
+        source,
+        grid_deg: (5.0, 10.0),
+        rank,
+    };
+    let files = contrast(&request(SourceRequest::Scene(path))).unwrap();
+    let given = [
+        ("target.toml", PAINT),
+        ("background.toml", glass),
+        ("band.csv", band),
+    ]
+    .map(|(n, t)| (n.to_string(), t.to_string()));
+    let loaded = polbrdf_tasks::scene::parse_scene_with_files(scene, "scene.toml", &given).unwrap();
+    let texts = contrast(&request(SourceRequest::Loaded(Box::new(loaded)))).unwrap();
+    assert!(texts.is_scene());
+    assert_eq!(files.map.samples, texts.map.samples);
+    assert_eq!(files.top, texts.top);
+    // Emission: the warmer target is brighter than the background at the nadir's neighbours.
+    let s = &texts.map.samples[texts.map.grid.n_phi() + 1];
+    assert!(s.radiance_difference() > 0.0, "{s:?}");
+    // A temperature the reader refuses: its message, naming the scene's line and key.
+    let bad = scene.replace("temperature_k = 305", "temperature_k = -5");
+    let e = polbrdf_tasks::scene::parse_scene_with_files(&bad, "scene.toml", &given)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("scene.toml:17: field `target.temperature_k`"),
+        "{e}"
+    );
+}
