@@ -11,8 +11,12 @@ const MATERIAL_INPUTS = [
 ];
 const STATE_INPUTS = [
   "wavelength", "sun-zenith", "sun-azimuth", "s0", "s1", "s2", "s3", "grid", "rank-by", "top",
-  "min-sep", "max-zenith", "refine",
+  "min-sep", "max-zenith", "refine", "spectrum-mode", "band-lo", "band-hi", "band-step",
+  "scene-on", "sun-irradiance", "sky-model", "sky-radiance", "sky-temperature", "sky-irradiance",
+  "sky-dop-max", "target-temperature", "background-temperature", "transmittance", "path-radiance",
 ];
+// The band file of the preset with edges: examples/lwir-8-12um.csv.
+const LWIR_EDGES = "wavelength_um,response\n7.8,0\n8.0,1\n12.0,1\n12.2,0\n";
 
 const view = { map: null, contrast: null, columns: {}, curves: null, best: [], grid: null, cursor: -1 };
 let tables = {};
@@ -70,6 +74,7 @@ function saveState() {
   const p = new URLSearchParams();
   p.set("target", $("target-text").value);
   p.set("background", $("background-text").value);
+  p.set("band", $("band-text").value);
   for (const id of STATE_INPUTS) {
     const el = $(id);
     p.set(id, el.type === "checkbox" ? String(el.checked) : el.value);
@@ -87,7 +92,52 @@ function loadState() {
     if (el.type === "checkbox") el.checked = p.get(id) === "true";
     else el.value = p.get(id);
   }
+  $("band-text").value = p.get("band") ?? flatBand();
   textToForm($("target-text").value);
+  showSpectrumAndSky();
+}
+
+// ---- spectrum and scene: the band file and the scene file the controls write ----------------
+// A flat band from λ_min to λ_max as a band file (the user's raw entries: the band reader
+// judges them).
+function flatBand() {
+  return `wavelength_um,response\n${$("band-lo").value.trim()},1\n${$("band-hi").value.trim()},1\n`;
+}
+
+function showSpectrumAndSky() {
+  const band = $("spectrum-mode").value === "band";
+  $("wavelength-set").hidden = band;
+  $("band-set").hidden = !band;
+  for (const l of document.querySelectorAll("label[data-sky]")) {
+    l.hidden = l.dataset.sky !== $("sky-model").value;
+  }
+}
+
+// The scene file of the controls, as `polbrdf contrast --scene` reads it: its files are the
+// page's target.toml, background.toml and band.csv. Values are the raw entries (the scene
+// reader judges them); an empty temperature leaves its key out (no emission).
+function sceneText() {
+  const v = (id) => $(id).value.trim();
+  const lines = ["# The polbrdf explorer's scene: polbrdf contrast --scene scene.toml"];
+  if ($("spectrum-mode").value === "band") {
+    lines.push("[band]", 'response = "band.csv"');
+    if (v("band-step")) lines.push(`step_um = ${v("band-step")}`);
+  } else if (v("wavelength")) {
+    lines.unshift(`wavelength_um = ${v("wavelength")}`);
+  }
+  lines.push("[sun]", `zenith_deg = ${v("sun-zenith")}`, `azimuth_deg = ${v("sun-azimuth")}`,
+    `irradiance = ${v("sun-irradiance")}`, `stokes = [${["s0", "s1", "s2", "s3"].map(v).join(", ")}]`);
+  const sky = v("sky-model");
+  lines.push("[sky]", `model = ${tomlString(sky)}`);
+  if (sky === "uniform") lines.push(`radiance = ${v("sky-radiance")}`);
+  if (sky === "thermal") lines.push(`temperature_k = ${v("sky-temperature")}`);
+  if (sky === "cie-clear") lines.push(`irradiance = ${v("sky-irradiance")}`, `dop_max = ${v("sky-dop-max")}`);
+  lines.push("[atmosphere]", `transmittance = ${v("transmittance")}`, `path_radiance = ${v("path-radiance")}`);
+  for (const side of ["target", "background"]) {
+    lines.push(`[${side}]`, `material = "${side}.toml"`);
+    if (v(`${side}-temperature`)) lines.push(`temperature_k = ${v(`${side}-temperature`)}`);
+  }
+  return lines.join("\n") + "\n";
 }
 
 // ---- inputs --------------------------------------------------------------------------------
@@ -97,14 +147,21 @@ const num = (id) => Number($(id).value.trim() === "" ? NaN : $(id).value);
 
 function request() {
   const wl = $("wavelength").value.trim();
+  const band = $("spectrum-mode").value === "band";
+  const step = $("band-step").value.trim();
   const [dt, dp] = $("grid").value.split(",").map((s) => Number(s));
+  const scene = $("scene-on").checked ? sceneText() : null;
+  $("scene-text").value = sceneText();
   return {
     target: $("target-text").value,
     background: $("background-text").value,
     zenith: num("sun-zenith"),
     azimuth: num("sun-azimuth"),
     stokes: new Float64Array(["s0", "s1", "s2", "s3"].map(num)),
-    wavelength: wl === "" ? undefined : Number(wl),
+    wavelength: band || wl === "" ? undefined : Number(wl),
+    bandCsv: band ? $("band-text").value : undefined,
+    bandStep: band && step !== "" ? Number(step) : undefined,
+    scene,
     grid: [dt, dp ?? dt],
   };
 }
@@ -112,13 +169,26 @@ function request() {
 // ---- computation ---------------------------------------------------------------------------
 function computeMap(r) {
   return pb.hemisphere(r.target, "target.toml", r.zenith, r.azimuth, r.stokes, r.wavelength,
-    r.grid[0], r.grid[1]);
+    r.bandCsv, r.bandStep, r.grid[0], r.grid[1]);
 }
 
+// Under the collimated sun, or in the scene (the scene file and the files it names).
 function computeContrast(r) {
+  const rank = [$("rank-by").value, Math.max(0, Math.floor(num("top"))), num("min-sep"),
+    num("max-zenith"), $("refine").checked];
+  if (r.scene !== null) {
+    return pb.scene_contrast(r.scene, r.target, r.background, r.bandCsv, r.grid[0], r.grid[1],
+      ...rank);
+  }
   return pb.contrast(r.target, r.background, r.zenith, r.azimuth, r.stokes, r.wavelength,
-    r.grid[0], r.grid[1], $("rank-by").value, Math.max(0, Math.floor(num("top"))),
-    num("min-sep"), num("max-zenith"), $("refine").checked);
+    r.bandCsv, r.bandStep, r.grid[0], r.grid[1], ...rank);
+}
+
+// Which box shows a message: the material's, the spectrum's or the light's.
+function errorBox(m) {
+  if (m.startsWith("material:")) return "target-error";
+  if (/^(wavelength_um|band_step_um|band\.csv)/.test(m)) return "spectrum-error";
+  return "light-error";
 }
 
 function showError(id, e) { $(id).textContent = e ? String(e.message ?? e) : ""; }
@@ -131,21 +201,22 @@ function recompute() {
   $("sun-azimuth-out").textContent = $("sun-azimuth").value;
   const times = {};
   let t0 = performance.now();
+  for (const id of ["target-error", "spectrum-error", "light-error"]) showError(id, null);
+  view.mapError = null;
   try {
     const map = computeMap(r);
     times.map = performance.now() - t0;
     view.map?.free(); view.map = map;
-    showError("target-error", null); showError("light-error", null);
   } catch (e) {
-    const m = String(e.message ?? e);
-    showError(m.startsWith("material:") ? "target-error" : "light-error", e);
-    if (m.startsWith("material:")) showError("light-error", null);
-    else showError("target-error", null);
+    view.mapError = String(e.message ?? e);
+    showError(errorBox(view.mapError), e);
     view.map?.free(); view.map = null;
   }
+  showCaptions(r);
   t0 = performance.now();
   try {
-    const curves = pb.in_plane(r.target, "target.toml", r.zenith, r.azimuth, r.stokes, r.wavelength);
+    const curves = pb.in_plane(r.target, "target.toml", r.zenith, r.azimuth, r.stokes, r.wavelength,
+      r.bandCsv, r.bandStep);
     times.curves = performance.now() - t0;
     view.curves?.free(); view.curves = curves;
   } catch { view.curves?.free(); view.curves = null; }
@@ -156,21 +227,34 @@ function recompute() {
   // The contrast (two materials and the ranking's refinement: the slow part) after the maps
   // are painted, so that dragging a control stays live.
   contrastPending = true;
-  setTimeout(() => recomputeContrast(r, times), 0);
+  if (r.scene !== null) {
+    // A scene takes longer (emission and sky integrals): say so, and let the page paint first.
+    $("timing").textContent += " · scene: computing…";
+    requestAnimationFrame(() => setTimeout(() => recomputeContrast(r, times), 0));
+  } else setTimeout(() => recomputeContrast(r, times), 0);
 }
 
 function recomputeContrast(r, times) {
   if (pending) { contrastPending = false; return; } // a newer state is on its way
   const t0 = performance.now();
+  showError("background-error", null); showError("scene-error", null);
+  $("scene-warnings").textContent = "";
   try {
     const c = computeContrast(r);
-    times.contrast = performance.now() - t0;
+    times[r.scene === null ? "contrast" : "scene"] = performance.now() - t0;
     view.contrast?.free(); view.contrast = c; view.columns = {};
     view.best = JSON.parse(c.best_json()).top;
-    showError("background-error", null);
+    $("scene-warnings").textContent = c.warnings().map((w) => `warning: ${w}`).join("\n");
   } catch (e) {
     const m = String(e.message ?? e);
-    showError("background-error", m.startsWith("target:") ? null : e);
+    // In a scene, the scene reader's message; else the background's (the target's and the
+    // spectrum's are shown above, by the map).
+    if (r.scene !== null) {
+      showError("scene-error", e);
+      // No observed radiance to show: the DoLP and AoLP maps are left blank.
+      for (const id of ["map-dolp", "map-aolp"]) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
+    }
+    else if (!m.startsWith("target:") && m !== view.mapError) showError("background-error", e);
     view.contrast?.free(); view.contrast = null; view.best = [];
   }
   contrastPending = false;
@@ -182,8 +266,9 @@ function recomputeContrast(r, times) {
 function showTiming(times) {
   const ms = (x) => (x === undefined ? "–" : x.toFixed(1));
   const n = view.map ? view.map.n_theta() * view.map.n_phi() : 0;
+  const last = times.scene === undefined ? `contrast ${ms(times.contrast)} ms` : `scene ${ms(times.scene)} ms`;
   $("timing").textContent =
-    `map ${n} directions (full Mueller) ${ms(times.map)} ms · curves ${ms(times.curves)} ms · contrast ${ms(times.contrast)} ms`;
+    `map ${n} directions (full Mueller) ${ms(times.map)} ms · curves ${ms(times.curves)} ms · ${last}`;
   $("timing").dataset.mapMs = times.map ?? "";
 }
 
@@ -220,6 +305,17 @@ function marks(r) {
   return m;
 }
 
+// In a scene the DoLP and AoLP maps are the target's observed radiance's (the contrast
+// study's), else the reflected beam's F·S_in.
+const inScene = (r) => r.scene !== null;
+
+function showCaptions(r) {
+  $("caption-dolp").textContent = inScene(r)
+    ? "DoLP of the observed radiance (target: sun + sky + emission)" : "DoLP of the reflected beam";
+  $("caption-aolp").textContent = inScene(r)
+    ? "AoLP of the observed radiance (deg, cyclic)" : "AoLP (deg, cyclic)";
+}
+
 function render(r) {
   const base = marks(r);
   const cursor = cursorMark();
@@ -230,9 +326,13 @@ function render(r) {
     const ls = logScale(brdf);
     draw.drawMap($("map-brdf"), grid, brdf, tables.viridis, ls.f);
     draw.drawBar($("bar-brdf"), tables.viridis, false, `1e${ls.lo.toFixed(1)}`, `1e${ls.hi.toFixed(1)}`, "sr⁻¹");
-    draw.drawMap($("map-dolp"), grid, view.map.dolp(), tables.viridis, (v) => v);
+    const scene = inScene(r) && view.contrast?.is_scene();
+    if (!inScene(r) || scene) {
+      draw.drawMap($("map-dolp"), grid, scene ? ccol("dolp_target") : view.map.dolp(), tables.viridis, (v) => v);
+      draw.drawMap($("map-aolp"), grid, scene ? ccol("aolp_target_deg") : view.map.aolp_deg(), tables.cyclic,
+        (v) => (v + 90) / 180, true);
+    }
     draw.drawBar($("bar-dolp"), tables.viridis, false, "0", "1", "DoLP");
-    draw.drawMap($("map-aolp"), grid, view.map.aolp_deg(), tables.cyclic, (v) => (v + 90) / 180, true);
     draw.drawBar($("bar-aolp"), tables.cyclic, true, "−90°", "90°", "AoLP");
     for (const id of ["map-brdf", "map-dolp", "map-aolp"]) draw.drawMarks($(id), [...base, ...cursor]);
     const m00 = view.map.mueller(0);
@@ -333,7 +433,13 @@ function renderReadout() {
   add("S out", ["s0", "s1", "s2", "s3"]);
   add("DoLP, AoLP°", ["dolp", "aolp_deg"]);
   if (view.contrast) {
-    for (const n of ["dolp_target", "dolp_background", "delta_dolp", "polarization_contrast"]) {
+    const names = ["dolp_target", "dolp_background", "delta_dolp", "polarization_contrast"];
+    // In a scene: the observed radiances (S0 and AoLP) of both, and their difference.
+    if (view.contrast.is_scene()) {
+      names.push("intensity_target", "aolp_target_deg", "intensity_background",
+        "aolp_background_deg", "radiance_difference");
+    }
+    for (const n of names) {
       const tr = t.insertRow();
       const th = document.createElement("th"); th.textContent = n; tr.appendChild(th);
       tr.appendChild(cell(n, ccol(n)[view.cursor]));
@@ -379,6 +485,14 @@ function savePng(id) {
 }
 
 function wireDownloads() {
+  $("download-scene").onclick = () => {
+    // The scene file and the files it names, beside each other (a browser may ask once
+    // whether the page may download several files).
+    const r = request();
+    const files = [["scene.toml", sceneText()], ["target.toml", r.target], ["background.toml", r.background]];
+    if ($("spectrum-mode").value === "band") files.push(["band.csv", $("band-text").value]);
+    files.forEach(([name, text], k) => setTimeout(() => save(name, text, "text/plain"), 150 * k));
+  };
   $("download-toml").onclick = () => {
     try { save("target.toml", pb.material_toml($("target-text").value, "target.toml"), "application/toml"); }
     catch (e) { showError("target-error", e); }
@@ -435,6 +549,20 @@ async function main() {
   }
   $("target-text").addEventListener("input", () => { textToForm($("target-text").value); schedule(); });
   $("background-text").addEventListener("input", schedule);
+  $("band-text").addEventListener("input", schedule);
+  const fromRange = () => { $("band-preset").value = ""; $("band-text").value = flatBand(); schedule(); };
+  for (const id of ["band-lo", "band-hi"]) $(id).addEventListener("input", fromRange);
+  $("band-preset").onchange = () => {
+    const p = $("band-preset").value;
+    if (!p) return;
+    if (p === "edges") $("band-text").value = LWIR_EDGES;
+    else {
+      [$("band-lo").value, $("band-hi").value] = p.split(",");
+      $("band-text").value = flatBand();
+    }
+    schedule();
+  };
+  for (const id of ["spectrum-mode", "sky-model"]) $(id).addEventListener("change", showSpectrumAndSky);
   for (const id of STATE_INPUTS) {
     $(id).addEventListener("input", schedule);
     $(id).addEventListener("change", schedule);
@@ -464,6 +592,18 @@ window.explorer = {
       const m = computeMap(r);
       out.push(performance.now() - t0);
       m.free();
+    }
+    return out;
+  },
+  // The contrast in the page's scene (both observed radiances over the grid, sun + sky +
+  // emission, and the ranking), as the page computes it after a control moves.
+  timeScene(reps) {
+    const r = { ...request(), scene: sceneText() }, out = [];
+    for (let k = 0; k < reps; k++) {
+      const t0 = performance.now();
+      const c = computeContrast(r);
+      out.push(performance.now() - t0);
+      c.free();
     }
     return out;
   },

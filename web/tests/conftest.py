@@ -69,6 +69,9 @@ def driver(out_dir: Path):
         opts.add_argument(arg)
     service = Service(os.environ.get("CHROMEDRIVER", "/usr/bin/chromedriver"))
     d = webdriver.Chrome(options=opts, service=service)
+    # A scene's recompute (sky integrals and emission over a band) may hold the page for tens
+    # of seconds on a loaded machine.
+    d.set_script_timeout(900)
     d.execute_cdp_cmd(
         "Page.setDownloadBehavior", {"behavior": "allow", "downloadPath": str(out_dir)}
     )

@@ -1,8 +1,12 @@
-//! Target against background under the page's sun: the task layer's contrast study (the map,
-//! the ranked best views and `best.json`, as `polbrdf contrast` writes them).
+//! Target against background under the page's sun, or in the page's scene (sun, sky, thermal
+//! emission): the task layer's contrast study (the map, the ranked best views and `best.json`,
+//! as `polbrdf contrast` and `polbrdf contrast --scene` write them).
 
-use crate::{js_error, light, material, spectral};
-use polbrdf_tasks::contrast::{contrast_of, ContrastStudy, RankRequest};
+use crate::{js_error, light, material, spectral, BAND_FILE};
+use polbrdf_tasks::contrast::{
+    contrast as contrast_study, contrast_of, ContrastRequest, ContrastStudy, RankRequest,
+    SourceRequest,
+};
 use wasm_bindgen::prelude::*;
 
 /// A contrast study ([`contrast`]): the columns of `contrast.csv` per grid node (zenith-major,
@@ -38,6 +42,16 @@ impl ContrastView {
     pub fn best_json(&self) -> String {
         serde_json::to_string_pretty(&self.study.best_json()).unwrap_or_default()
     }
+    /// Whether the study is in a scene (observed radiances; `contrast.csv` then has the
+    /// column `radiance_difference`).
+    pub fn is_scene(&self) -> bool {
+        self.study.is_scene()
+    }
+    /// The setup's warnings (valid but probably not what was meant), as the command line
+    /// prints them.
+    pub fn warnings(&self) -> Vec<String> {
+        self.study.warnings.iter().map(|w| w.to_string()).collect()
+    }
     /// `contrast.csv` (the project's CSV writer).
     pub fn csv(&self) -> Vec<u8> {
         let mut t = polbrdf_io::CsvTable::new(self.study.columns());
@@ -50,7 +64,8 @@ impl ContrastView {
 
 /// The contrast of the material files `target` and `background` (texts, named `target.toml`
 /// and `background.toml` in messages) under the sun and Stokes vector given, at
-/// `wavelength_um`, on the grid of steps `(dtheta_deg, dphi_deg)`; best views ranked by
+/// `wavelength_um` or over the band of the band file's text `band_csv` with the quadrature
+/// step `band_step_um`, on the grid of steps `(dtheta_deg, dphi_deg)`; best views ranked by
 /// `rank_by` (`delta-dolp` or `polarization-contrast`), `top` of them at least
 /// `min_separation_deg` apart, zenith ≤ `max_zenith_deg`, refined when `refine`.
 ///
@@ -65,6 +80,8 @@ pub fn contrast(
     sun_azimuth_deg: f64,
     stokes: &[f64],
     wavelength_um: Option<f64>,
+    band_csv: Option<String>,
+    band_step_um: Option<f64>,
     dtheta_deg: f64,
     dphi_deg: f64,
     rank_by: &str,
@@ -73,16 +90,7 @@ pub fn contrast(
     max_zenith_deg: f64,
     refine: bool,
 ) -> Result<ContrastView, JsError> {
-    let by = rank_by
-        .parse()
-        .map_err(|e: String| JsError::new(&format!("rank_by: {e}")))?;
-    let rank = RankRequest {
-        by,
-        top,
-        min_separation_deg,
-        max_zenith_deg,
-        refine,
-    };
+    let rank = rank_request(rank_by, top, min_separation_deg, max_zenith_deg, refine)?;
     let t = material(target, "target.toml", "target")?;
     let b = material(background, "background.toml", "background")?;
     let l = light(sun_zenith_deg, sun_azimuth_deg, stokes)?;
@@ -90,10 +98,72 @@ pub fn contrast(
         t,
         b,
         &l,
-        &spectral(wavelength_um),
+        &spectral(wavelength_um, band_csv, band_step_um),
         (dtheta_deg, dphi_deg),
         rank,
     )
+    .map_err(js_error)?;
+    Ok(ContrastView { study })
+}
+
+/// The ranking of a contrast request.
+fn rank_request(
+    rank_by: &str,
+    top: usize,
+    min_separation_deg: f64,
+    max_zenith_deg: f64,
+    refine: bool,
+) -> Result<RankRequest, JsError> {
+    let by = rank_by
+        .parse()
+        .map_err(|e: String| JsError::new(&format!("rank_by: {e}")))?;
+    Ok(RankRequest {
+        by,
+        top,
+        min_separation_deg,
+        max_zenith_deg,
+        refine,
+    })
+}
+
+/// The contrast in the scene file `scene` (its text, named `scene.toml` in messages) as
+/// `polbrdf contrast --scene scene.toml` computes it: the files it names are the page's —
+/// `target.toml` and `background.toml` (the texts `target` and `background`) and, when
+/// `band_csv` is given, `band.csv`. Grid and ranking as [`contrast`].
+///
+/// # Errors
+/// The scene reader's message (file, line, key; the command line's for the same files), the
+/// ranking's, the grid's, the materials' over the scene's spectrum.
+#[wasm_bindgen]
+#[allow(clippy::too_many_arguments)] // The page's controls, one argument each.
+pub fn scene_contrast(
+    scene: &str,
+    target: &str,
+    background: &str,
+    band_csv: Option<String>,
+    dtheta_deg: f64,
+    dphi_deg: f64,
+    rank_by: &str,
+    top: usize,
+    min_separation_deg: f64,
+    max_zenith_deg: f64,
+    refine: bool,
+) -> Result<ContrastView, JsError> {
+    let rank = rank_request(rank_by, top, min_separation_deg, max_zenith_deg, refine)?;
+    let mut files = vec![
+        ("target.toml".to_string(), target.to_string()),
+        ("background.toml".to_string(), background.to_string()),
+    ];
+    files.extend(band_csv.map(|b| (BAND_FILE.to_string(), b)));
+    let scene = polbrdf_tasks::scene::parse_scene_with_files(scene, "scene.toml", &files)
+        .map_err(js_error)?;
+    let study = contrast_study(&ContrastRequest {
+        target: None,
+        background: None,
+        source: SourceRequest::Loaded(Box::new(scene)),
+        grid_deg: (dtheta_deg, dphi_deg),
+        rank,
+    })
     .map_err(js_error)?;
     Ok(ContrastView { study })
 }

@@ -14,7 +14,7 @@
 mod contrast;
 mod map;
 
-pub use contrast::{contrast, ContrastView};
+pub use contrast::{contrast, scene_contrast, ContrastView};
 pub use map::{hemisphere, in_plane, InPlaneView, MapView};
 
 use polbrdf_plot::Colormap;
@@ -158,11 +158,20 @@ pub(crate) fn light(
     })
 }
 
-/// The spectrum of a page request: a wavelength (µm) or none.
-pub(crate) fn spectral(wavelength_um: Option<f64>) -> polbrdf_tasks::spectrum::SpectralRequest {
-    polbrdf_tasks::spectrum::SpectralRequest {
+/// The name of the page's band file (in messages, and in the scene file it writes).
+pub(crate) const BAND_FILE: &str = "band.csv";
+
+/// The spectrum of a page request: a wavelength (µm), or the text of a band file
+/// ([`BAND_FILE`]) with its quadrature step (µm; `None`: the default), or none.
+pub(crate) fn spectral(
+    wavelength_um: Option<f64>,
+    band_csv: Option<String>,
+    band_step_um: Option<f64>,
+) -> polbrdf_tasks::spectrum::SpectralText {
+    polbrdf_tasks::spectrum::SpectralText {
         wavelength_um,
-        ..Default::default()
+        band: band_csv.map(|text| (BAND_FILE.to_string(), text)),
+        band_step_um,
     }
 }
 
@@ -218,6 +227,8 @@ mod tests {
             30.0,
             0.0,
             &[1.0, 0.0, 0.0, 0.0],
+            None,
+            None,
             None,
             1.0,
             2.0,

@@ -76,8 +76,9 @@ impl MapView {
 
 /// The full-Mueller hemisphere map of the material file `text` (named `file_name` in
 /// messages) under a sun at `(sun_zenith_deg, sun_azimuth_deg)` with incident Stokes vector
-/// `stokes` (four components), at `wavelength_um` (needed for a spectral index), on the grid
-/// of steps `(dtheta_deg, dphi_deg)`.
+/// `stokes` (four components), at `wavelength_um` or over the band whose file's text is
+/// `band_csv` (`band.csv` in messages; columns wavelength_um,response) with the quadrature step
+/// `band_step_um` (needed for a spectral index), on the grid of steps `(dtheta_deg, dphi_deg)`.
 ///
 /// # Errors
 /// The task layer's message: the material file's (line, key), the source's, the grid's.
@@ -90,13 +91,15 @@ pub fn hemisphere(
     sun_azimuth_deg: f64,
     stokes: &[f64],
     wavelength_um: Option<f64>,
+    band_csv: Option<String>,
+    band_step_um: Option<f64>,
     dtheta_deg: f64,
     dphi_deg: f64,
 ) -> Result<MapView, JsError> {
     let m = material(text, file_name, "material")?;
     let l = light(sun_zenith_deg, sun_azimuth_deg, stokes)?;
-    let map = explore::mueller_map(&m, &l, (dtheta_deg, dphi_deg), &spectral(wavelength_um))
-        .map_err(js_error)?;
+    let s = spectral(wavelength_um, band_csv, band_step_um);
+    let map = explore::mueller_map(&m, &l, (dtheta_deg, dphi_deg), &s).map_err(js_error)?;
     Ok(MapView { map })
 }
 
@@ -137,6 +140,7 @@ impl InPlaneView {
 /// # Errors
 /// As [`hemisphere`].
 #[wasm_bindgen]
+#[allow(clippy::too_many_arguments)] // The page's controls, one argument each.
 pub fn in_plane(
     text: &str,
     file_name: &str,
@@ -144,9 +148,12 @@ pub fn in_plane(
     sun_azimuth_deg: f64,
     stokes: &[f64],
     wavelength_um: Option<f64>,
+    band_csv: Option<String>,
+    band_step_um: Option<f64>,
 ) -> Result<InPlaneView, JsError> {
     let m = material(text, file_name, "material")?;
     let l = light(sun_zenith_deg, sun_azimuth_deg, stokes)?;
-    let curves = explore::in_plane(&m, &l, &spectral(wavelength_um)).map_err(js_error)?;
+    let s = spectral(wavelength_um, band_csv, band_step_um);
+    let curves = explore::in_plane(&m, &l, &s).map_err(js_error)?;
     Ok(InPlaneView { curves })
 }
