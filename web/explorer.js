@@ -115,27 +115,31 @@ function showSpectrumAndSky() {
 
 // The scene file of the controls, as `polbrdf contrast --scene` reads it: its files are the
 // page's target.toml, background.toml and band.csv. Values are the raw entries (the scene
-// reader judges them); an empty temperature leaves its key out (no emission).
+// reader judges them); an empty field leaves its key out (a temperature: no emission; a
+// required key: the reader says it is missing).
 function sceneText() {
   const v = (id) => $(id).value.trim();
   const lines = ["# The polbrdf explorer's scene: polbrdf contrast --scene scene.toml"];
+  const kv = (key, id) => { if (v(id)) lines.push(`${key} = ${v(id)}`); };
   if ($("spectrum-mode").value === "band") {
     lines.push("[band]", 'response = "band.csv"');
-    if (v("band-step")) lines.push(`step_um = ${v("band-step")}`);
+    kv("step_um", "band-step");
   } else if (v("wavelength")) {
-    lines.unshift(`wavelength_um = ${v("wavelength")}`);
+    lines.splice(1, 0, `wavelength_um = ${v("wavelength")}`);
   }
-  lines.push("[sun]", `zenith_deg = ${v("sun-zenith")}`, `azimuth_deg = ${v("sun-azimuth")}`,
-    `irradiance = ${v("sun-irradiance")}`, `stokes = [${["s0", "s1", "s2", "s3"].map(v).join(", ")}]`);
+  lines.push("[sun]", `zenith_deg = ${v("sun-zenith")}`, `azimuth_deg = ${v("sun-azimuth")}`);
+  kv("irradiance", "sun-irradiance");
+  lines.push(`stokes = [${["s0", "s1", "s2", "s3"].map(v).join(", ")}]`);
   const sky = v("sky-model");
   lines.push("[sky]", `model = ${tomlString(sky)}`);
-  if (sky === "uniform") lines.push(`radiance = ${v("sky-radiance")}`);
-  if (sky === "thermal") lines.push(`temperature_k = ${v("sky-temperature")}`);
-  if (sky === "cie-clear") lines.push(`irradiance = ${v("sky-irradiance")}`, `dop_max = ${v("sky-dop-max")}`);
-  lines.push("[atmosphere]", `transmittance = ${v("transmittance")}`, `path_radiance = ${v("path-radiance")}`);
+  if (sky === "uniform") kv("radiance", "sky-radiance");
+  if (sky === "thermal") kv("temperature_k", "sky-temperature");
+  if (sky === "cie-clear") { kv("irradiance", "sky-irradiance"); kv("dop_max", "sky-dop-max"); }
+  lines.push("[atmosphere]");
+  kv("transmittance", "transmittance"); kv("path_radiance", "path-radiance");
   for (const side of ["target", "background"]) {
     lines.push(`[${side}]`, `material = "${side}.toml"`);
-    if (v(`${side}-temperature`)) lines.push(`temperature_k = ${v(`${side}-temperature`)}`);
+    kv("temperature_k", `${side}-temperature`);
   }
   return lines.join("\n") + "\n";
 }
@@ -249,12 +253,11 @@ function recomputeContrast(r, times) {
     const m = String(e.message ?? e);
     // In a scene, the scene reader's message; else the background's (the target's and the
     // spectrum's are shown above, by the map).
-    if (r.scene !== null) {
-      showError("scene-error", e);
-      // No observed radiance to show: the DoLP and AoLP maps are left blank.
-      for (const id of ["map-dolp", "map-aolp"]) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
-    }
+    if (r.scene !== null) showError("scene-error", e);
     else if (!m.startsWith("target:") && m !== view.mapError) showError("background-error", e);
+    // Nothing to show on the contrast maps (and in a scene on the DoLP and AoLP maps): blank.
+    const blank = ["map-delta", "map-pc", ...(r.scene !== null ? ["map-dolp", "map-aolp"] : [])];
+    for (const id of blank) $(id).getContext("2d").clearRect(0, 0, $(id).width, $(id).height);
     view.contrast?.free(); view.contrast = null; view.best = [];
   }
   contrastPending = false;
@@ -311,9 +314,9 @@ const inScene = (r) => r.scene !== null;
 
 function showCaptions(r) {
   $("caption-dolp").textContent = inScene(r)
-    ? "DoLP of the observed radiance (target: sun + sky + emission)" : "DoLP of the reflected beam";
+    ? "DoLP, observed radiance (target)" : "DoLP of the reflected beam";
   $("caption-aolp").textContent = inScene(r)
-    ? "AoLP of the observed radiance (deg, cyclic)" : "AoLP (deg, cyclic)";
+    ? "AoLP, observed radiance (deg)" : "AoLP (deg, cyclic)";
 }
 
 function render(r) {
