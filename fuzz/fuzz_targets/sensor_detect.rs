@@ -29,7 +29,10 @@ fuzz_target!(|data: &[u8]| {
     };
     let det = Detector::new(file.sensor, path, 1.0, criteria)
         .unwrap_or_else(|e| panic!("a parsed sensor makes a detector: {e}"));
-    let (t, b) = (Stokes::new(3.0, 0.5, 0.2, 0.0), Stokes::new(1.0, 0.0, 0.05, 0.0));
+    let (t, b) = (
+        Stokes::new(3.0, 0.5, 0.2, 0.0),
+        Stokes::new(1.0, 0.0, 0.05, 0.0),
+    );
     for r in [1.0, 100.0, 1e4] {
         let d = det.detect(&t, &b, 0.4, r).unwrap();
         assert!((0.0..=1.0).contains(&d.pd), "{d:?}");

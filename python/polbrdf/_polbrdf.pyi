@@ -1,7 +1,7 @@
 """Type stubs of the compiled module ``polbrdf._polbrdf`` (use it through ``polbrdf``)."""
 
 from os import PathLike
-from typing import Any, Literal, TypeAlias, final
+from typing import Any, Literal, TypeAlias, TypedDict, final
 
 import numpy as np
 from numpy.typing import NDArray
@@ -457,34 +457,44 @@ def daytime_task(
     background: str | None,
     date: str | None,
     times: list[str] | None,
-    range: tuple[str, str, float],
+    range: tuple[str | None, str | None, float | None],
     grid_deg: tuple[float, float] | None,
-    fixed_view_deg: tuple[float, float],
+    fixed_view_deg: tuple[float, float] | None,
     criteria: tuple[float | None, float | None, float | None, float | None],
 ) -> tuple[list[str], list[str], NDArray[np.float64]]:
     """A time-of-day sweep as ``polbrdf daytime`` runs it: the columns after ``date_time``,
     the rows' date-times and the table; use :func:`polbrdf.daytime`."""
+class _DetectOptions(TypedDict):
+    """The keywords of :func:`polbrdf.detect` as the task takes them (``None``: its default)."""
+
+    target: str | None
+    background: str | None
+    grid_deg: tuple[float, float] | None
+    theta_deg: list[float] | None
+    phi_deg: list[float] | None
+    ranges_m: list[float] | None
+    no_search: bool
+    range_limit_m: float | None
+    area_m2: float | None
+    pfa: float | None
+    pd: float | None
+    features: list[_Feature] | None
+    sun_deg: tuple[float, float] | None
+    target_fit: FitResult | str | None
+    background_fit: FitResult | str | None
+    uncertainty_views: int | str | None
+
 def detect_task(
     scene_file: str | PathLike[str] | None,
     scene_text: tuple[str, str] | None,
     sensor: str | PathLike[str],
-    target: str | None,
-    background: str | None,
-    grid_deg: tuple[float, float] | None,
-    views: list[tuple[float, float]] | None,
-    ranges_m: list[float],
-    search: bool,
-    range_limit_m: float,
-    area_m2: float,
-    pfa: float,
-    pd: float,
-    features: list[_Feature],
-    sun_deg: tuple[float, float] | None,
+    options: _DetectOptions,
     frame_seed: int | None,
 ) -> dict[str, Any]:
-    """A detection study as ``polbrdf detect`` runs it (``frame_seed``: with ``--frame``): the
-    rows of ``detect.csv`` as arrays, ``best.json`` as JSON text, the frame's arrays; use
-    :func:`polbrdf.detect`."""
+    """A detection study as ``polbrdf detect`` runs it (``options``: the keywords of
+    :func:`polbrdf.detect`, ``None`` taking the task's defaults; ``frame_seed``: with
+    ``--frame``): the rows of ``detect.csv`` as arrays, ``best.json`` as JSON text, the
+    frame's arrays; use :func:`polbrdf.detect`."""
 
 def bridge_flat(
     name: str,

@@ -4,7 +4,8 @@
 Each is one call of the task layer (the Rust crate ``polbrdf-tasks``) that the CLI calls too:
 the same validation, the same messages, the same numbers bit for bit (``detect.csv``'s rows,
 ``best.json``'s document, the frame's ``.npy`` arrays). The keywords are the CLI's options in
-snake_case, with the CLI's defaults (docs/detection.md).
+snake_case; a keyword left ``None`` takes the task layer's default, which is the CLI's
+(docs/detection.md). ``detect.csv``'s column names come from the task layer too.
 """
 
 from __future__ import annotations
@@ -13,18 +14,19 @@ import json
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, TypedDict, Unpack
 
 import numpy as np
 from numpy.typing import NDArray
 
 from . import _polbrdf
+from ._polbrdf import FitResult
 from .scene import Scene
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray
 
-__all__ = ["DetectFrame", "DetectStudy", "Feature", "detect", "detect_frame"]
+__all__ = ["DetectFrame", "DetectOptions", "DetectStudy", "Feature", "detect", "detect_frame"]
 
 #: The features a detector may use (``--features``): intensity, DoLP, or both combined.
 Feature: TypeAlias = Literal["s0", "dolp", "s0+dolp"]
@@ -32,20 +34,26 @@ Feature: TypeAlias = Literal["s0", "dolp", "s0+dolp"]
 PathName: TypeAlias = "str | os.PathLike[str]"
 _F64 = NDArray[np.float64]
 
-#: The numeric columns of ``detect.csv``, in order (the first eleven).
-_NUMERIC = (
-    "theta_r_deg",
-    "phi_r_deg",
-    "range_m",
-    "pixels_on_target",
-    "snr_s0",
-    "snr_dolp",
-    "snr_combined",
-    "polarization_contrast",
-    "snr_polarization_contrast",
-    "d_prime",
-    "pd",
-)
+
+class DetectOptions(TypedDict, total=False):
+    """The keywords of :func:`detect` (and of :func:`detect_frame`, which adds ``seed``)."""
+
+    target: PathName | None
+    background: PathName | None
+    grid_deg: float | Sequence[float] | None
+    theta_deg: float | Sequence[float] | None
+    phi_deg: float | Sequence[float] | None
+    ranges_m: float | Sequence[float] | None
+    no_search: bool
+    range_limit_m: float | None
+    area_m2: float | None
+    pfa: float | None
+    pd: float | None
+    features: Sequence[Feature] | None
+    sun_deg: Sequence[float] | None
+    target_fit: FitResult | PathName | None
+    background_fit: FitResult | PathName | None
+    uncertainty_views: int | Literal["all"] | None
 
 
 @dataclass(frozen=True)
@@ -59,7 +67,9 @@ class DetectStudy:
       arrays; ``study["saturated"]`` as a bool array; ``study["max_range_m"]`` as float64 —
       the view's detection range, ``inf`` when beyond ``range_limit_m``, NaN when not
       detectable or not searched (``max_range_text`` holds the CSV's text:
-      a number, ``"beyond"``, ``"not detectable"`` or empty);
+      a number, ``"beyond"``, ``"not detectable"`` or empty); ``study["max_range_sigma_m"]``,
+      ``study["max_range_lo95_m"]``, ``study["max_range_hi95_m"]``: the detection range's
+      standard deviation and 95 % interval from the materials' fits (NaN where none);
     - ``view_max_range_m``: the detection range per view (as ``max_range_m``), zenith-major on
       a grid; ``grid``: the grid's ``(zeniths, azimuths)``, ``None`` for listed views;
     - ``best``: ``best.json`` as a dict (``best["views"]``: every view ranked by detection
@@ -109,7 +119,8 @@ class DetectStudy:
             coords["range_m"] = np.asarray(self.ranges_m)
         else:
             dims, shape = view_dims, view_shape
-        skip = {"theta_r_deg", "phi_r_deg", "max_range_m", "max_range_feature"}
+        per_view_columns = ("max_range_feature", *self.columns[-3:])
+        skip = {"theta_r_deg", "phi_r_deg", "max_range_m", *per_view_columns}
         if self.ranges_m:
             skip.add("range_m")
         data = {
@@ -118,8 +129,9 @@ class DetectStudy:
             if name not in skip
         }
         data["max_range_m"] = (view_dims, self.view_max_range_m.reshape(view_shape))
-        feature = self.rows["max_range_feature"].reshape(n_views, per_view)[:, 0]
-        data["max_range_feature"] = (view_dims, feature.reshape(view_shape))
+        for name in per_view_columns:
+            first = self.rows[name].reshape(n_views, per_view)[:, 0]
+            data[name] = (view_dims, first.reshape(view_shape))
         return xr.Dataset(
             data, coords=coords, attrs={"best_json": json.dumps(self.best, ensure_ascii=False)}
         )
@@ -174,6 +186,57 @@ def _pair(
     raise _invalid(name, f"expected two numbers, got {len(v)}")
 
 
+def _path(name: str, value: Any) -> str | None:
+    if value is None:
+        return None
+    if not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"`{name}` must be a material file or a preset name (str or path)")
+    return os.fspath(value)
+
+
+def _fit(name: str, value: Any) -> FitResult | str | None:
+    if value is None or isinstance(value, FitResult):
+        return value
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise TypeError(
+        f"`{name}` must be a polbrdf.FitResult or the path of a fit.json, not "
+        f"{type(value).__name__}"
+    )
+
+
+def _options(kw: dict[str, Any]) -> Any:
+    """The keywords as the task takes them (the stub's ``_DetectOptions``): checked,
+    converted; ``None`` left to the task."""
+    unknown = set(kw) - set(DetectOptions.__annotations__)
+    if unknown:
+        raise TypeError(f"unexpected keyword argument {min(unknown)!r}")
+    theta, phi = _floats("theta_deg", kw.get("theta_deg")), _floats("phi_deg", kw.get("phi_deg"))
+    if theta is not None and kw.get("grid_deg") is not None:
+        raise _invalid("grid_deg", "give a grid or listed views (theta_deg), not both")
+    if theta is None and phi is not None:
+        raise _invalid("phi_deg", "phi_deg needs theta_deg")
+    features = kw.get("features")
+    if isinstance(features, str):
+        features = [features]
+    number = {n: kw.get(n) for n in ("range_limit_m", "area_m2", "pfa", "pd")}
+    return {
+        "target": _path("target", kw.get("target")),
+        "background": _path("background", kw.get("background")),
+        "grid_deg": _pair("grid_deg", kw.get("grid_deg"), one=True),
+        "theta_deg": theta,
+        "phi_deg": phi,
+        "ranges_m": _floats("ranges_m", kw.get("ranges_m")),
+        "no_search": bool(kw.get("no_search", False)),
+        **{n: None if v is None else float(v) for n, v in number.items()},
+        "features": None if features is None else [str(f) for f in features],
+        "sun_deg": _pair("sun_deg", kw.get("sun_deg"), one=False),
+        "target_fit": _fit("target_fit", kw.get("target_fit")),
+        "background_fit": _fit("background_fit", kw.get("background_fit")),
+        "uncertainty_views": kw.get("uncertainty_views"),
+    }
+
+
 def _run(
     scene: Scene | PathName,
     sensor: PathName,
@@ -192,54 +255,25 @@ def _run(
         )
     if not isinstance(sensor, (str, os.PathLike)):
         raise TypeError(f"`sensor` must be the path of a sensor file, not {type(sensor).__name__}")
-    theta, phi = _floats("theta_deg", kw["theta_deg"]), _floats("phi_deg", kw["phi_deg"])
-    views = None
-    if theta is not None:
-        if kw["grid_deg"] is not None:
-            raise _invalid("grid_deg", "give a grid or listed views (theta_deg), not both")
-        views = [(t, p) for t in theta for p in (phi if phi else [0.0])]
-    elif phi is not None:
-        raise _invalid("phi_deg", "phi_deg needs theta_deg")
-    ranges = _floats("ranges_m", kw["ranges_m"])
-    features = kw["features"]
-    if isinstance(features, str):
-        features = [features]
-    for name in ("target", "background"):
-        if kw[name] is not None and not isinstance(kw[name], (str, os.PathLike)):
-            raise TypeError(f"`{name}` must be a material file or a preset name (str or path)")
-    out = _polbrdf.detect_task(
-        scene_file,
-        scene_text,
-        os.fspath(sensor),
-        None if kw["target"] is None else os.fspath(kw["target"]),
-        None if kw["background"] is None else os.fspath(kw["background"]),
-        _pair("grid_deg", kw["grid_deg"], one=True),
-        views,
-        [1000.0] if ranges is None else ranges,
-        not kw["no_search"],
-        float(kw["range_limit_m"]),
-        float(kw["area_m2"]),
-        float(kw["pfa"]),
-        float(kw["pd"]),
-        [str(f) for f in features],
-        _pair("sun_deg", kw["sun_deg"], one=False),
-        frame_seed,
-    )
-    values = out["values"]
-    rows: dict[str, NDArray[Any]] = {c: values[:, k] for k, c in enumerate(_NUMERIC)}
+    out = _polbrdf.detect_task(scene_file, scene_text, os.fspath(sensor), _options(kw), frame_seed)
+    rows: dict[str, NDArray[Any]] = {
+        c: out["values"][:, k] for k, c in enumerate(out["numeric_columns"])
+    }
     rows["feature"] = np.array(out["feature"], dtype=np.str_)
     rows["saturated"] = out["saturated"]
     text = np.array(out["max_range_text"], dtype=np.str_)
     per_view = len(text) // max(len(out["max_range_m"]), 1)
     rows["max_range_m"] = np.repeat(out["max_range_m"], per_view)
     rows["max_range_feature"] = np.array(out["max_range_feature"], dtype=np.str_)
+    for k, c in enumerate(out["uncertainty_columns"]):
+        rows[c] = out["uncertainty"][:, k]
     study = DetectStudy(
         tuple(out["columns"]),
         rows,
         text,
         out["max_range_m"],
         out["grid"],
-        tuple([1000.0] if ranges is None else ranges),
+        tuple(out["ranges_m"]),
         json.loads(out["best"]),
         tuple(out["warnings"]),
     )
@@ -257,12 +291,15 @@ def detect(
     phi_deg: float | Sequence[float] | None = None,
     ranges_m: float | Sequence[float] | None = None,
     no_search: bool = False,
-    range_limit_m: float = 10_000.0,
-    area_m2: float = 1.0,
-    pfa: float = 1e-6,
-    pd: float = 0.9,
-    features: Sequence[Feature] = ("s0", "dolp", "s0+dolp"),
+    range_limit_m: float | None = None,
+    area_m2: float | None = None,
+    pfa: float | None = None,
+    pd: float | None = None,
+    features: Sequence[Feature] | None = None,
     sun_deg: Sequence[float] | None = None,
+    target_fit: FitResult | PathName | None = None,
+    background_fit: FitResult | PathName | None = None,
+    uncertainty_views: int | Literal["all"] | None = None,
 ) -> DetectStudy:
     """Will the sensor see the target on its background, from which views, by which feature
     and out to what range: ``polbrdf detect`` (docs/detection.md).
@@ -285,13 +322,22 @@ def detect(
         list with the search: one row per view, at its detection range.
     no_search : bool
         Do not search each view's detection range (``--no-search``).
-    range_limit_m, area_m2, pfa, pd : float
+    range_limit_m, area_m2, pfa, pd : float, optional
         The largest range searched (m), the target's area (m²), the false-alarm probability
         and the required probability of detection (defaults 10 000, 1, 10⁻⁶, 0.9).
-    features : sequence of {"s0", "dolp", "s0+dolp"}
+    features : sequence of {"s0", "dolp", "s0+dolp"}, optional
         The features the detector may use (``--features``; default all three).
     sun_deg : (float, float), optional
         The sun's zenith and azimuth (°), replacing the scene's ``[sun]`` position.
+    target_fit, background_fit : FitResult, or str or path, optional
+        The material's fit (``--target-fit``, ``--background-fit``): a :class:`FitResult` or a
+        ``fit.json`` of ``polbrdf fit``, of the material used (its values must be the fit's).
+        The detection range then carries its standard deviation and 95 % interval
+        (``max_range_sigma_m``, ``max_range_lo95_m``, ``max_range_hi95_m``; docs/detection.md,
+        "Uncertainty of the range").
+    uncertainty_views : int or "all", optional
+        With a fit: the best-ranked views given an interval (``--uncertainty-views``; default
+        10).
 
     Returns
     -------
@@ -307,7 +353,9 @@ def detect(
     OSError
         When a file cannot be read.
     """
-    study, _ = _run(scene, sensor, None, locals())
+    kw = dict(locals())
+    del kw["scene"], kw["sensor"]
+    study, _ = _run(scene, sensor, None, kw)
     return study
 
 
@@ -316,19 +364,7 @@ def detect_frame(
     sensor: PathName,
     *,
     seed: int = 0,
-    target: PathName | None = None,
-    background: PathName | None = None,
-    grid_deg: float | Sequence[float] | None = None,
-    theta_deg: float | Sequence[float] | None = None,
-    phi_deg: float | Sequence[float] | None = None,
-    ranges_m: float | Sequence[float] | None = None,
-    no_search: bool = False,
-    range_limit_m: float = 10_000.0,
-    area_m2: float = 1.0,
-    pfa: float = 1e-6,
-    pd: float = 0.9,
-    features: Sequence[Feature] = ("s0", "dolp", "s0+dolp"),
-    sun_deg: Sequence[float] | None = None,
+    **options: Unpack[DetectOptions],
 ) -> DetectFrame:
     """The simulated camera frame of a detection study: ``polbrdf detect --frame --seed SEED``
     (docs/detection-frame.md) — at the study's best-ranked view (the first view without a
@@ -341,10 +377,9 @@ def detect_frame(
         As :func:`detect`; naming ``frame`` for a sensor that cannot be simulated (a thermal
         NEL/NETD sensor, or not DoFP).
     """
-    kw = locals()
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise _invalid("seed", f"{seed!r}: expected an integer ≥ 0")
-    study, f = _run(scene, sensor, int(seed), kw)
+    study, f = _run(scene, sensor, int(seed), dict(options))
     assert f is not None
     return DetectFrame(
         f["raw_counts"],

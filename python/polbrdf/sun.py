@@ -115,6 +115,12 @@ class DaytimeStudy:
         )
 
 
+def _invalid(name: str, message: str) -> ValueError:
+    e = ValueError(f"invalid `{name}`: {message}")
+    e.argument = name  # type: ignore[attr-defined]
+    return e
+
+
 def daytime(
     scene: Scene | str | os.PathLike[str],
     *,
@@ -122,12 +128,12 @@ def daytime(
     target: str | os.PathLike[str] | None = None,
     background: str | os.PathLike[str] | None = None,
     date: str | None = None,
-    from_: str = "06:00",
-    to: str = "18:00",
-    step_min: float = 30.0,
+    from_: str | None = None,
+    to: str | None = None,
+    step_min: float | None = None,
     times: Sequence[str] | None = None,
     grid_deg: float | Sequence[float] | None = None,
-    fixed_view_deg: Sequence[float] = (0.0, 0.0),
+    fixed_view_deg: Sequence[float] | None = None,
     area_m2: float | None = None,
     pfa: float | None = None,
     pd: float | None = None,
@@ -155,7 +161,7 @@ def daytime(
         Listed local times instead (``--times``).
     grid_deg : float or (float, float), optional
         The grid of every time's study (default 5°, 10°).
-    fixed_view_deg : (float, float)
+    fixed_view_deg : (float, float), optional
         The fixed view θr, φr in degrees (default nadir).
     area_m2, pfa, pd, range_limit_m : float, optional
         With a sensor: as :func:`polbrdf.detect` (same defaults).
@@ -180,22 +186,16 @@ def daytime(
     if sensor is None:
         for name, value in given.items():
             if value is not None:
-                e = ValueError(f"invalid `{name}`: a detection option: give `sensor` too")
-                e.argument = name  # type: ignore[attr-defined]
-                raise e
+                raise _invalid(name, "a detection option: give `sensor` too")
     grid = None
     if grid_deg is not None:
         g = [float(x) for x in np.atleast_1d(np.asarray(grid_deg, dtype=np.float64))]
         if len(g) not in (1, 2):
-            e = ValueError(f"invalid `grid_deg`: expected one or two steps, got {len(g)}")
-            e.argument = "grid_deg"  # type: ignore[attr-defined]
-            raise e
+            raise _invalid("grid_deg", f"expected one or two steps, got {len(g)}")
         grid = (g[0], g[-1])
-    fixed = [float(x) for x in fixed_view_deg]
-    if len(fixed) != 2:
-        e = ValueError(f"invalid `fixed_view_deg`: expected (theta, phi), got {len(fixed)} values")
-        e.argument = "fixed_view_deg"  # type: ignore[attr-defined]
-        raise e
+    fixed = None if fixed_view_deg is None else [float(x) for x in fixed_view_deg]
+    if fixed is not None and len(fixed) != 2:
+        raise _invalid("fixed_view_deg", f"expected (theta, phi), got {len(fixed)} values")
     try:
         columns, date_times, table = _polbrdf.daytime_task(
             scene_file,
@@ -205,9 +205,13 @@ def daytime(
             None if background is None else os.fspath(background),
             date,
             None if times is None else [str(t) for t in times],
-            (str(from_), str(to), float(step_min)),
+            (
+                None if from_ is None else str(from_),
+                None if to is None else str(to),
+                None if step_min is None else float(step_min),
+            ),
             grid,
-            (fixed[0], fixed[1]),
+            None if fixed is None else (fixed[0], fixed[1]),
             tuple(None if v is None else float(v) for v in given.values()),
         )
     except ValueError as e:

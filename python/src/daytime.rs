@@ -1,17 +1,15 @@
 //! The time-of-day sweep (`polbrdf_tasks::daytime`, docs/sun-position.md) for Python: builds
-//! the task's request from what `polbrdf.daytime` hands over (with the CLI's defaults), runs it
-//! with the GIL released and returns `daytime.csv`'s columns as NumPy arrays: the numbers of
-//! `polbrdf daytime`, bit for bit. Nothing here computes.
+//! the task's request from what `polbrdf.daytime` hands over (the task's defaults where it
+//! gives none, as the CLI's), runs it with the GIL released and returns `daytime.csv`'s
+//! columns as NumPy arrays: the numbers of `polbrdf daytime`, bit for bit. Nothing here
+//! computes.
 
 use crate::detect::scene_source;
 use crate::tasks::task_err;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
-use polbrdf_tasks::contrast::RankRequest;
-use polbrdf_tasks::daytime::{
-    daytime, time_range, DaytimeDetect, DaytimeRequest, DAYTIME_GRID_DEG,
-};
-use polbrdf_tasks::detect::{DetectRequest, SensorSource};
+use polbrdf_tasks::daytime::{daytime, time_range, DaytimeDetect, DaytimeRequest, DEFAULT_TIMES};
+use polbrdf_tasks::detect::SensorSource;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -23,8 +21,12 @@ type Criteria = (Option<f64>, Option<f64>, Option<f64>, Option<f64>);
 /// (RFC 3339 with the offset) and the table (one row per time).
 type DaytimeOut<'py> = (Vec<&'static str>, Vec<String>, Bound<'py, PyArray2<f64>>);
 
+/// The range of local times `(from, to, step_min)`, each `None` taking the task's default.
+type TimeRange = (Option<String>, Option<String>, Option<f64>);
+
 /// A time-of-day sweep (`polbrdf_tasks::daytime`), as `polbrdf daytime` runs it: `times`, or
-/// the range `(from, to, step_min)` of local times; with `sensor`, the detection ranges too.
+/// the range of local times; with `sensor`, the detection ranges too. Every `None` takes the
+/// task's default ([`DaytimeRequest::new`], [`DaytimeDetect::new`], [`DEFAULT_TIMES`]).
 #[pyfunction]
 #[pyo3(signature = (scene_file, scene_text, sensor, target, background, date, times, range,
     grid_deg, fixed_view_deg, criteria))]
@@ -38,45 +40,36 @@ pub(crate) fn daytime_task<'py>(
     background: Option<String>,
     date: Option<String>,
     times: Option<Vec<String>>,
-    range: (String, String, f64),
+    range: TimeRange,
     grid_deg: Option<(f64, f64)>,
-    fixed_view_deg: (f64, f64),
+    fixed_view_deg: Option<(f64, f64)>,
     criteria: Criteria,
 ) -> PyResult<DaytimeOut<'py>> {
     let times = match times {
         Some(t) => t,
-        None => time_range(&range.0, &range.1, range.2).map_err(|e| task_err(py, &e))?,
+        None => time_range(
+            range.0.as_deref().unwrap_or(DEFAULT_TIMES.0),
+            range.1.as_deref().unwrap_or(DEFAULT_TIMES.1),
+            range.2.unwrap_or(DEFAULT_TIMES.2),
+        )
+        .map_err(|e| task_err(py, &e))?,
     };
     let (area_m2, pfa, pd, range_limit_m) = criteria;
-    let detect = sensor.map(|s| {
-        let d = DetectRequest::default();
-        DaytimeDetect {
-            template: DetectRequest {
-                sensor: SensorSource::File(s),
-                area_m2: area_m2.unwrap_or(d.area_m2),
-                pfa: pfa.unwrap_or(d.pfa),
-                pd: pd.unwrap_or(d.pd),
-                range_limit_m: range_limit_m.unwrap_or(d.range_limit_m),
-                ..d
-            },
-        }
+    let mut request = DaytimeRequest::new(scene_source(scene_file, scene_text)?, times);
+    request.detect = sensor.map(|s| {
+        let mut d = DaytimeDetect::new(SensorSource::File(s));
+        let t = &mut d.template;
+        t.area_m2 = area_m2.unwrap_or(t.area_m2);
+        t.pfa = pfa.unwrap_or(t.pfa);
+        t.pd = pd.unwrap_or(t.pd);
+        t.range_limit_m = range_limit_m.unwrap_or(t.range_limit_m);
+        d
     });
-    let request = DaytimeRequest {
-        scene: scene_source(scene_file, scene_text)?,
-        target,
-        background,
-        date,
-        times,
-        grid_deg: grid_deg.unwrap_or(DAYTIME_GRID_DEG),
-        // As the CLI's: the best view is the best grid node (refining it costs a sky integral
-        // per trial view under a clear sky, at every time).
-        rank: RankRequest {
-            refine: false,
-            ..RankRequest::default()
-        },
-        fixed_view_deg,
-        detect,
-    };
+    request.target = target;
+    request.background = background;
+    request.date = date;
+    request.grid_deg = grid_deg.unwrap_or(request.grid_deg);
+    request.fixed_view_deg = fixed_view_deg.unwrap_or(request.fixed_view_deg);
     let study = py
         .detach(|| daytime(&request))
         .map_err(|e| task_err(py, &e))?;

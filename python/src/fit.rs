@@ -29,6 +29,13 @@ pub(crate) struct PyFitResult {
     material: Material,
 }
 
+impl PyFitResult {
+    /// The fit's result (for the tasks that take a fit, e.g. a detection range's uncertainty).
+    pub(crate) fn result(&self) -> &polbrdf_fit::FitResult {
+        &self.result
+    }
+}
+
 #[pymethods]
 impl PyFitResult {
     /// Names of the free parameters, in the order of every array below.

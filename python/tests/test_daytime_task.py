@@ -49,6 +49,9 @@ CASES: dict[str, tuple[list[str], Any]] = {
             date="2026-12-21", pfa=1e-4, range_limit_m=30000,
         ),
     ),
+    # No options: the defaults (06:00–18:00 every 30 min, the 5°×10° grid, nadir, the best
+    # view unrefined) are the task layer's for both.
+    "defaults": ([], lambda: polbrdf.daytime(SCENE)),
 }  # fmt: skip
 
 

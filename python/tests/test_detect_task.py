@@ -51,8 +51,9 @@ def assert_study_is_the_cli_s(study: polbrdf.DetectStudy, out: Path) -> None:
     assert tuple(header) == study.columns
     assert len(body) == len(study) > 0
     columns = {name: [r[k] for r in body] for k, name in enumerate(header)}
-    for name in header[:11]:
-        cli = np.array([float(t) for t in columns[name]])
+    numeric = [*header[:11], "max_range_sigma_m", "max_range_lo95_m", "max_range_hi95_m"]
+    for name in numeric:
+        cli = np.array([float(t) if t else np.nan for t in columns[name]])
         assert same_bits(cli, study[name]), name
     assert columns["feature"] == list(study["feature"])
     assert columns["max_range_feature"] == list(study["max_range_feature"])
@@ -109,6 +110,75 @@ def test_detect_gives_the_cli_s_files_bit_for_bit(case: str, tmp_path: Path) -> 
     args, study_of = CASES[case]
     run_cli(args, tmp_path / "out")
     assert_study_is_the_cli_s(study_of(), tmp_path / "out")
+
+
+@needs_cli
+def test_a_call_without_options_is_the_cli_s_run_without_options(tmp_path: Path) -> None:
+    # The defaults (rows at 1000 m, the 1°×2° grid, the criteria) are the task layer's, for
+    # both: a call with none given is the same study.
+    sun_only = EXAMPLES / "sun-only-scene.toml"
+    run_cli(["--scene", str(sun_only), "--sensor", str(SONY)], tmp_path / "out")
+    study = polbrdf.detect(sun_only, SONY)
+    assert_study_is_the_cli_s(study, tmp_path / "out")
+    assert study.ranges_m == (1000.0,) and study.grid == (90, 180)
+
+
+def fitted_paint(tmp_path: Path) -> tuple[Path, Path, polbrdf.FitResult]:
+    """The example paint fitted to the example goniometer data by the CLI (fit.json and the
+    fitted material) and by Python (a FitResult, equal to the CLI's fit bit for bit)."""
+    assert CLI is not None
+    fit_json, fitted = tmp_path / "fit.json", tmp_path / "fitted.toml"
+    r = subprocess.run(
+        [str(CLI), "fit", "--material", str(EXAMPLES / "paint-init.toml"), "--data",
+         str(EXAMPLES / "paint-goniometer.csv"), "--free", "n,sigma_deg,rho_d,rho_v",
+         "--output", str(fit_json), "--material-out", str(fitted)],
+        capture_output=True, text=True, check=False,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    result = polbrdf.fit_measurements(
+        polbrdf.Material.from_toml(EXAMPLES / "paint-init.toml"),
+        EXAMPLES / "paint-goniometer.csv",
+        "n,sigma_deg,rho_d,rho_v",
+    )
+    return fit_json, fitted, result
+
+
+@needs_cli
+def test_the_range_s_interval_from_a_fit_is_the_cli_s(tmp_path: Path) -> None:
+    fit_json, fitted, result = fitted_paint(tmp_path)
+    args = ["--scene", str(DAYLIGHT), "--sensor", str(SONY), "--target", str(fitted),
+            "--target-fit", str(fit_json), "--theta-deg", "10,24,60", "--phi-deg", "0,180",
+            "--range-limit-m", "50000", "--uncertainty-views", "4"]  # fmt: skip
+    run_cli(args, tmp_path / "out")
+    kw: dict[str, Any] = {"target": fitted, "theta_deg": [10, 24, 60], "phi_deg": [0, 180],
+                          "range_limit_m": 50000, "uncertainty_views": 4}  # fmt: skip
+    from_file = polbrdf.detect(DAYLIGHT, SONY, target_fit=fit_json, **kw)
+    from_result = polbrdf.detect(DAYLIGHT, SONY, target_fit=result, **kw)
+    best = json.loads((tmp_path / "out" / "best.json").read_text())
+    assert_study_is_the_cli_s(from_file, tmp_path / "out")
+    for name in ("max_range_m", "max_range_sigma_m", "max_range_lo95_m", "max_range_hi95_m"):
+        assert same_bits(from_result[name], from_file[name]), name
+    # Four views have an interval, around their range; the others none.
+    sigma = from_file["max_range_sigma_m"]
+    assert np.isfinite(sigma).sum() == 4 and np.all(sigma[np.isfinite(sigma)] > 0)
+    r, hi = from_file["max_range_m"], from_file["max_range_hi95_m"]
+    has = np.isfinite(sigma)
+    assert np.allclose(hi[has] - r[has], 1.959963984540054 * sigma[has], rtol=1e-12)
+    assert best["uncertainty"]["target_fit"]["parameters"] == ["n", "sigma_deg", "rho_d", "rho_v"]
+    assert best["best"]["uncertainty"] == "interval"
+
+
+def test_a_fit_of_another_material_is_refused_naming_the_key(tmp_path: Path) -> None:
+    doc = {"parameter_order": ["n"], "parameters": {"n": {"value": 1.9, "bound": "interior"}},
+           "covariance": [[1e-4]]}  # fmt: skip
+    (tmp_path / "fit.json").write_text(json.dumps(doc))
+    with pytest.raises(ValueError, match=r"`parameters.n.value` = 1.9 of the fit"):
+        polbrdf.detect(DAYLIGHT, SONY, theta_deg=[30], target_fit=tmp_path / "fit.json")
+    with pytest.raises(TypeError, match="FitResult or the path of a fit.json"):
+        polbrdf.detect(DAYLIGHT, SONY, theta_deg=[30], target_fit=3)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="uncertainty_views") as e:
+        polbrdf.detect(DAYLIGHT, SONY, theta_deg=[30], uncertainty_views=0)
+    assert e.value.argument == "uncertainty_views"  # type: ignore[attr-defined]
 
 
 def test_the_rows_are_views_by_ranges_and_the_ranking_is_by_range() -> None:

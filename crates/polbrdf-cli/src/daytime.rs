@@ -6,11 +6,10 @@
 use crate::error::CliError;
 use crate::output::{write_all, OutputFile};
 use polbrdf_plot::{render_files, Figure, LegendAt, Line, Panel, Render, PALETTE};
-use polbrdf_tasks::contrast::RankRequest;
 use polbrdf_tasks::daytime::{
-    daytime, time_range, DaytimeDetect, DaytimeRequest, DaytimeStudy, DAYTIME_GRID_DEG,
+    daytime, time_range, DaytimeDetect, DaytimeRequest, DaytimeStudy, DEFAULT_TIMES,
 };
-use polbrdf_tasks::detect::{DetectRequest, SceneSource, SensorSource};
+use polbrdf_tasks::detect::{SceneSource, SensorSource};
 use std::path::PathBuf;
 
 /// `polbrdf daytime`.
@@ -32,13 +31,13 @@ pub struct Args {
     #[arg(long, value_name = "YYYY-MM-DD")]
     pub date: Option<String>,
     /// First local time, HH:MM (the scene's UTC offset).
-    #[arg(long, value_name = "HH:MM", default_value = "06:00")]
+    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.0)]
     pub from: String,
     /// Last local time, HH:MM (included when on a step).
-    #[arg(long, value_name = "HH:MM", default_value = "18:00")]
+    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.1)]
     pub to: String,
     /// Minutes between two times.
-    #[arg(long, value_name = "MIN", default_value_t = 30.0)]
+    #[arg(long, value_name = "MIN", default_value_t = DEFAULT_TIMES.2)]
     pub step_min: f64,
     /// Listed local times (HH:MM, comma separated) instead of --from/--to/--step-min.
     #[arg(long, value_name = "HH:MM", value_delimiter = ',', conflicts_with_all = ["from", "to", "step_min"])]
@@ -48,13 +47,8 @@ pub struct Args {
     #[arg(long, value_name = "DTHETA,DPHI")]
     pub grid_deg: Option<String>,
     /// The fixed view THETA,PHI in degrees. Default 0,0 (nadir).
-    #[arg(
-        long,
-        value_name = "THETA,PHI",
-        allow_hyphen_values = true,
-        default_value = "0,0"
-    )]
-    pub fixed_view_deg: String,
+    #[arg(long, value_name = "THETA,PHI", allow_hyphen_values = true)]
+    pub fixed_view_deg: Option<String>,
     /// The target's area, m² (with --sensor).
     #[arg(long, value_name = "M2")]
     pub area_m2: Option<f64>,
@@ -72,27 +66,24 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// The task's request from the command line.
+/// The task's request from the command line: [`DaytimeRequest::new`] with what was given.
 fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
     let times = if args.times.is_empty() {
         time_range(&args.from, &args.to, args.step_min)?
     } else {
         args.times.clone()
     };
-    let detect = args.sensor.as_ref().map(|s| {
-        let d = DetectRequest::default();
-        DaytimeDetect {
-            template: DetectRequest {
-                sensor: SensorSource::File(s.clone()),
-                area_m2: args.area_m2.unwrap_or(d.area_m2),
-                pfa: args.pfa.unwrap_or(d.pfa),
-                pd: args.pd.unwrap_or(d.pd),
-                range_limit_m: args.range_limit_m.unwrap_or(d.range_limit_m),
-                ..d
-            },
-        }
+    let mut r = DaytimeRequest::new(SceneSource::File(args.scene.clone()), times);
+    r.detect = args.sensor.as_ref().map(|s| {
+        let mut d = DaytimeDetect::new(SensorSource::File(s.clone()));
+        let t = &mut d.template;
+        t.area_m2 = args.area_m2.unwrap_or(t.area_m2);
+        t.pfa = args.pfa.unwrap_or(t.pfa);
+        t.pd = args.pd.unwrap_or(t.pd);
+        t.range_limit_m = args.range_limit_m.unwrap_or(t.range_limit_m);
+        d
     });
-    if detect.is_none() {
+    if r.detect.is_none() {
         let given = [
             ("--area-m2", args.area_m2),
             ("--pfa", args.pfa),
@@ -105,38 +96,23 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
             )));
         }
     }
-    Ok(DaytimeRequest {
-        scene: SceneSource::File(args.scene.clone()),
-        target: args.target.clone(),
-        background: args.background.clone(),
-        date: args.date.clone(),
-        times,
-        grid_deg: match &args.grid_deg {
-            None => DAYTIME_GRID_DEG,
-            Some(text) => match pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
-                [a] => (a, a),
-                [a, b] => (a, b),
-                _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
-            },
-        },
-        // The best view is the best grid node: refining it costs a sky integral per trial
-        // view under a clear sky, at every time.
-        rank: RankRequest {
-            refine: false,
-            ..RankRequest::default()
-        },
-        fixed_view_deg: match pair(&args.fixed_view_deg, "--fixed-view-deg", "THETA,PHI")?[..] {
+    r.target.clone_from(&args.target);
+    r.background.clone_from(&args.background);
+    r.date.clone_from(&args.date);
+    if let Some(text) = &args.grid_deg {
+        r.grid_deg = match pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
+            [a] => (a, a),
             [a, b] => (a, b),
-            _ => {
-                return Err(invalid_pair(
-                    &args.fixed_view_deg,
-                    "--fixed-view-deg",
-                    "THETA,PHI",
-                ))
-            }
-        },
-        detect,
-    })
+            _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
+        };
+    }
+    if let Some(text) = &args.fixed_view_deg {
+        r.fixed_view_deg = match pair(text, "--fixed-view-deg", "THETA,PHI")?[..] {
+            [a, b] => (a, b),
+            _ => return Err(invalid_pair(text, "--fixed-view-deg", "THETA,PHI")),
+        };
+    }
+    Ok(r)
 }
 
 /// Comma-separated numbers of `option`.

@@ -7,7 +7,10 @@ use crate::figures::{polar_grid, render_all, short, single};
 use crate::output::{write_all, OutputFile};
 use polbrdf::analysis::detection::Feature;
 use polbrdf_plot::{ColorScale, Colormap, PolarPanel};
-use polbrdf_tasks::detect::{detect, DetectRequest, DetectStudy, SceneSource, SensorSource, Views};
+use polbrdf_tasks::detect::{
+    detect, DetectRequest, DetectStudy, FitSource, SceneSource, SensorSource, Views,
+};
+use polbrdf_tasks::detect_unc::RangeUncertainty;
 use std::path::PathBuf;
 
 /// Options of `polbrdf detect`.
@@ -60,7 +63,7 @@ pub struct Args {
     #[arg(
         long,
         value_name = "M",
-        default_value_t = 10_000.0,
+        default_value_t = DetectRequest::default().range_limit_m,
         allow_negative_numbers = true
     )]
     pub range_limit_m: f64,
@@ -68,7 +71,7 @@ pub struct Args {
     #[arg(
         long,
         value_name = "M2",
-        default_value_t = 1.0,
+        default_value_t = DetectRequest::default().area_m2,
         allow_negative_numbers = true
     )]
     pub area_m2: f64,
@@ -76,7 +79,7 @@ pub struct Args {
     #[arg(
         long,
         value_name = "P",
-        default_value_t = 1e-6,
+        default_value_t = DetectRequest::default().pfa,
         allow_negative_numbers = true
     )]
     pub pfa: f64,
@@ -84,21 +87,27 @@ pub struct Args {
     #[arg(
         long,
         value_name = "P",
-        default_value_t = 0.9,
+        default_value_t = DetectRequest::default().pd,
         allow_negative_numbers = true
     )]
     pub pd: f64,
-    /// Features the detector may use (s0, dolp, s0+dolp).
-    #[arg(
-        long,
-        value_name = "LIST",
-        value_delimiter = ',',
-        default_value = "s0,dolp,s0+dolp"
-    )]
+    /// Features the detector may use (s0, dolp, s0+dolp; default all three).
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
     pub features: Vec<String>,
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
     #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
     pub sun_deg: Option<String>,
+    /// The target material's fit (fit.json of `polbrdf fit`, of the target's material and its
+    /// values): the detection range gets σ and a 95 % interval (docs/detection.md).
+    #[arg(long, value_name = "FIT.json")]
+    pub target_fit: Option<PathBuf>,
+    /// The background material's fit, likewise (independent of the target's).
+    #[arg(long, value_name = "FIT.json")]
+    pub background_fit: Option<PathBuf>,
+    /// With a fit: the best-ranked views given an interval, a number or `all` (default 10;
+    /// each costs 2 range searches per free parameter).
+    #[arg(long, value_name = "N|all")]
+    pub uncertainty_views: Option<String>,
     /// Also simulate the camera frame at the best view and the first range: frame.png/.svg
     /// and frame_*.npy (photon-counting DoFP sensors; docs/detection-frame.md).
     #[arg(long)]
@@ -125,67 +134,65 @@ fn pair(text: &str, option: &str) -> Result<(f64, f64), CliError> {
 
 impl Args {
     fn request(&self) -> Result<DetectRequest, CliError> {
-        let views = if self.theta_deg.is_empty() {
+        let mut r = DetectRequest::new(
+            SceneSource::File(self.scene.clone()),
+            SensorSource::File(self.sensor.clone()),
+        );
+        if self.theta_deg.is_empty() {
             if !self.phi_deg.is_empty() {
                 return Err(CliError::Usage("--phi-deg needs --theta-deg".into()));
             }
-            Views::Grid(match &self.grid_deg {
-                Some(g) => pair(g, "--grid-deg")?,
-                None => polbrdf_tasks::hemisphere::DEFAULT_GRID_DEG,
-            })
+            if let Some(g) = &self.grid_deg {
+                r.views = Views::Grid(pair(g, "--grid-deg")?);
+            }
         } else {
-            let phis = if self.phi_deg.is_empty() {
-                vec![0.0]
-            } else {
-                self.phi_deg.clone()
-            };
             crate::limits::at_most(
                 "--theta-deg × --phi-deg",
-                self.theta_deg.len() * phis.len(),
+                self.theta_deg.len() * self.phi_deg.len().max(1),
                 1_000_000,
             )?;
-            Views::List(
-                self.theta_deg
-                    .iter()
-                    .flat_map(|t| phis.iter().map(move |p| (*t, *p)))
-                    .collect(),
-            )
-        };
-        let features = self
-            .features
-            .iter()
-            .map(|f| {
-                Feature::parse(f).ok_or_else(|| {
-                    CliError::Invalid(format!(
-                        "--features: unknown feature {f:?} (known: s0, dolp, s0+dolp)"
-                    ))
+            r.views = Views::listed(&self.theta_deg, &self.phi_deg);
+        }
+        if !self.features.is_empty() {
+            r.features = self
+                .features
+                .iter()
+                .map(|f| {
+                    Feature::parse(f).ok_or_else(|| {
+                        CliError::Invalid(format!(
+                            "--features: unknown feature {f:?} (known: s0, dolp, s0+dolp)"
+                        ))
+                    })
                 })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+                .collect::<Result<Vec<_>, _>>()?;
+        }
         crate::limits::at_most("--ranges-m", self.ranges_m.len(), 1000)?;
-        Ok(DetectRequest {
-            scene: SceneSource::File(self.scene.clone()),
-            sensor: SensorSource::File(self.sensor.clone()),
-            target: self.target.clone(),
-            background: self.background.clone(),
-            views,
-            ranges_m: if self.ranges_m.is_empty() {
-                vec![1000.0]
-            } else {
-                self.ranges_m.clone()
-            },
-            search: !self.no_search,
-            range_limit_m: self.range_limit_m,
-            area_m2: self.area_m2,
-            pfa: self.pfa,
-            pd: self.pd,
-            features,
-            sun_deg: self
-                .sun_deg
-                .as_deref()
-                .map(|s| pair(s, "--sun-deg"))
-                .transpose()?,
-        })
+        if !self.ranges_m.is_empty() {
+            r.ranges_m.clone_from(&self.ranges_m);
+        }
+        r.target.clone_from(&self.target);
+        r.background.clone_from(&self.background);
+        r.search = !self.no_search;
+        (r.range_limit_m, r.area_m2, r.pfa, r.pd) =
+            (self.range_limit_m, self.area_m2, self.pfa, self.pd);
+        r.sun_deg = self
+            .sun_deg
+            .as_deref()
+            .map(|s| pair(s, "--sun-deg"))
+            .transpose()?;
+        r.target_fit = self.target_fit.clone().map(FitSource::File);
+        r.background_fit = self.background_fit.clone().map(FitSource::File);
+        if let Some(n) = &self.uncertainty_views {
+            r.uncertainty_views = match n.trim() {
+                "all" => None,
+                t => Some(t.parse::<usize>().ok().filter(|n| *n > 0).ok_or_else(|| {
+                    CliError::Invalid(format!(
+                        "--uncertainty-views = {n:?}: expected a number of views ≥ 1 or `all`"
+                    ))
+                })?),
+            };
+        }
+        Ok(r)
     }
 }
 
@@ -230,7 +237,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
     );
     for (k, v) in study.ranked().into_iter().take(5).enumerate() {
         println!(
-            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}",
+            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}{}",
             k + 1,
             short(v.theta_r.to_degrees()),
             short(v.phi_r.to_degrees()),
@@ -238,6 +245,20 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
                 "" => "not searched".to_string(),
                 t if t.parse::<f64>().is_ok() => format!("{} m", short(t.parse().unwrap_or(0.0))),
                 t => t.to_string(),
+            },
+            match v.range_uncertainty {
+                Some(RangeUncertainty::Interval {
+                    sigma_m,
+                    lo_m,
+                    hi_m,
+                }) => format!(
+                    " ± {} m (95 %: {}–{} m)",
+                    short(sigma_m),
+                    short(lo_m),
+                    short(hi_m)
+                ),
+                Some(RangeUncertainty::Undefined) => " (no interval: see best.json)".into(),
+                None => String::new(),
             }
         );
     }

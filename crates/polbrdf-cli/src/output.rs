@@ -101,6 +101,8 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("detect", "sensor", Role::Input),
     ("detect", "target", Role::Input),
     ("detect", "background", Role::Input),
+    ("detect", "target_fit", Role::Input),
+    ("detect", "background_fit", Role::Input),
     ("detect", "out", Role::Dir),
     ("albedo", "material", Role::Input),
     ("albedo", "band", Role::Input),

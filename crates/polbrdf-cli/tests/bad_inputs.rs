@@ -212,6 +212,14 @@ fn radiance_scene(
     )
 }
 
+/// A `fit.json` of one free parameter `name` with `value` and variance `variance` (JSON text).
+fn fit_json(name: &str, value: &str, variance: &str) -> String {
+    format!(
+        "{{\"parameter_order\": [\"{name}\"], \"parameters\": {{\"{name}\": {{\"value\": {value}, \
+         \"bound\": \"interior\"}}}}, \"covariance\": [[{variance}]]}}\n"
+    )
+}
+
 /// A valid photon-counting sensor file.
 const CAM: &str = "noise_model = \"photon-counting\"\nextinction_ratio = 300\npixel_pitch_um = 3.45\nfocal_length_mm = 25\nf_number = 4\nquantum_efficiency = 0.6\nintegration_time_ms = 1\nfull_well_e = 10000\nread_noise_e = 2\nadc_bits = 12\nband_lo_um = 0.45\nband_hi_um = 0.65\n";
 /// A valid scene for `detect`.
@@ -933,6 +941,17 @@ fn table_common() -> Vec<Case> {
         detect("detect: negative range", (DETECT_SCENE, CAM), vec![], &["--ranges-m", "-5"], 3, &["--ranges-m", "> 0"]),
         detect("detect: unknown feature", (DETECT_SCENE, CAM), vec![], &["--features", "aolp"], 3, &["--features", "aolp"]),
         detect("detect: sun below the horizon", (DETECT_SCENE, CAM), vec![], &["--sun-deg", "95,0"], 3, &["sun_zenith_deg", "95"]),
+        // The materials' fits (docs/detection.md, "Uncertainty of the range").
+        detect("detect: target fit missing", (DETECT_SCENE, CAM), vec![], &["--target-fit", "{d}/none.json"], 4, &["none.json", "cannot read"]),
+        detect("detect: target fit not JSON", (DETECT_SCENE, CAM), vec![("f.json", t("{\"parameter_order\": [\"n\"],\n \"covariance\": [[1e-4]]\n"))], &["--target-fit", "{d}/f.json"], 3, &["f.json:3", "not valid JSON"]),
+        detect("detect: target fit of another material", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("n", "1.9", "1e-4")))], &["--target-fit", "{d}/f.json"], 3, &["f.json", "`parameters.n.value` = 1.9", "target material (paint)", "`n` = 1.65"]),
+        detect("detect: background fit of another parameter set", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("tau_deg", "7", "1e-2")))], &["--background-fit", "{d}/f.json"], 3, &["f.json", "`parameters.tau_deg.value` = 7", "background material (glass)"]),
+        detect("detect: fit of an unknown parameter", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("colour", "1", "1")))], &["--target-fit", "{d}/f.json"], 3, &["f.json", "`parameter_order`", "colour"]),
+        detect("detect: fit covariance not finite", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("n", "1.5", "null")))], &["--target-fit", "{d}/f.json"], 3, &["f.json", "`covariance[0][0]`", "not finite"]),
+        detect("detect: fit covariance out of range", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("n", "1.5", "1e999")))], &["--target-fit", "{d}/f.json"], 3, &["f.json:1", "not valid JSON", "out of range"]),
+        detect("detect: fit negative variance", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("n", "1.5", "-1e-4")))], &["--target-fit", "{d}/f.json"], 3, &["f.json", "`covariance[0][0]`", "≥ 0"]),
+        detect("detect: fit without the range search", (DETECT_SCENE, CAM), vec![("f.json", t(&fit_json("n", "1.5", "1e-4")))], &["--target-fit", "{d}/f.json", "--no-search"], 2, &["--target-fit", "range search"]),
+        detect("detect: no uncertainty view", (DETECT_SCENE, CAM), vec![], &["--uncertainty-views", "0"], 3, &["--uncertainty-views", "≥ 1 or `all`"]),
         // Outputs (issue 18): an output that is an input or another output, a directory, .npy
         // (read-only, linked, device and FIFO outputs: tests/outputs.rs).
         case("eval: output is the input", vec![("g.csv", t(GEO))], &["eval", "--material", "paint", "--input", "{d}/g.csv", "--output", "{d}/g.csv"], 3, &["g.csv", "same file as the input"]),

@@ -25,6 +25,13 @@ use polbrdf_io::Scene;
 /// material).
 pub const DAYTIME_GRID_DEG: (f64, f64) = (5.0, 10.0);
 
+/// The local times of a sweep given none, `(from, to, step in minutes)`: 06:00 to 18:00 every
+/// 30 minutes ([`time_range`]).
+pub const DEFAULT_TIMES: (&str, &str, f64) = ("06:00", "18:00", 30.0);
+
+/// The fixed view of a sweep given none, `(θr, φr)` in degrees: nadir.
+pub const DEFAULT_FIXED_VIEW_DEG: (f64, f64) = (0.0, 0.0);
+
 /// The most times one sweep takes (one a minute over a day).
 pub const MAX_TIMES: usize = 1441;
 
@@ -196,7 +203,16 @@ pub struct DaytimeDetect {
     pub template: DetectRequest,
 }
 
-/// A time-of-day sweep.
+impl DaytimeDetect {
+    /// Detection with `sensor` and `polbrdf detect`'s defaults ([`DetectRequest::new`]).
+    pub fn new(sensor: SensorSource) -> Self {
+        Self {
+            template: DetectRequest::new(SceneSource::File(std::path::PathBuf::new()), sensor),
+        }
+    }
+}
+
+/// A time-of-day sweep ([`DaytimeRequest::new`] has the adapters' defaults).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DaytimeRequest {
     /// The scene (its `[sun]` placed by `date_time`).
@@ -217,6 +233,30 @@ pub struct DaytimeRequest {
     pub fixed_view_deg: (f64, f64),
     /// Detection with a sensor; `None`: contrast only.
     pub detect: Option<DaytimeDetect>,
+}
+
+impl DaytimeRequest {
+    /// The sweep of `scene` at `times` that `polbrdf daytime` and `polbrdf.daytime` make
+    /// without further options: the scene's materials and date, the [`DAYTIME_GRID_DEG`] grid,
+    /// the best view the best grid node (not refined: refining costs a sky integral per trial
+    /// view under a clear sky, at every time), the fixed view [`DEFAULT_FIXED_VIEW_DEG`], no
+    /// sensor.
+    pub fn new(scene: SceneSource, times: Vec<String>) -> Self {
+        Self {
+            scene,
+            target: None,
+            background: None,
+            date: None,
+            times,
+            grid_deg: DAYTIME_GRID_DEG,
+            rank: RankRequest {
+                refine: false,
+                ..RankRequest::default()
+            },
+            fixed_view_deg: DEFAULT_FIXED_VIEW_DEG,
+            detect: None,
+        }
+    }
 }
 
 /// With a sensor: the view of the longest detection range, `(θr, φr)` in radians, its range,

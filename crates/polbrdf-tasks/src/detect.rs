@@ -6,7 +6,9 @@
 //! noise to `d'`, `P_d` at each requested range and the detection range of each view.
 
 use crate::contrast::material_of;
+use crate::detect_unc::{Propagation, RangeUncertainty, DEFAULT_UNCERTAINTY_VIEWS};
 use crate::error::{TaskError, TaskResult};
+use crate::fit_covariance::FitCovariance;
 use crate::hemisphere::view_grid;
 use crate::scene::Warning;
 use crate::spectrum::NamedMaterial;
@@ -48,6 +50,20 @@ pub enum Views {
     List(Vec<(f64, f64)>),
 }
 
+impl Views {
+    /// Every combination of the zeniths `theta_deg` with the azimuths `phi_deg` (zenith-major;
+    /// no azimuth: 0°), as the adapters list views.
+    pub fn listed(theta_deg: &[f64], phi_deg: &[f64]) -> Self {
+        let phis: &[f64] = if phi_deg.is_empty() { &[0.0] } else { phi_deg };
+        Views::List(
+            theta_deg
+                .iter()
+                .flat_map(|t| phis.iter().map(move |p| (*t, *p)))
+                .collect(),
+        )
+    }
+}
+
 /// A detection study (docs/detection.md).
 #[derive(Debug, Clone, PartialEq)]
 pub struct DetectRequest {
@@ -79,11 +95,47 @@ pub struct DetectRequest {
     /// The sun's `(zenith, azimuth)` in degrees, replacing the scene's `[sun]` position (its
     /// irradiance and Stokes vector kept): for a sweep over the time of day.
     pub sun_deg: Option<(f64, f64)>,
+    /// The target material's fitted parameters and their covariance: gives the detection
+    /// range an interval (docs/detection.md, "Uncertainty of the range"); needs `search`.
+    pub target_fit: Option<FitSource>,
+    /// The background material's, likewise.
+    pub background_fit: Option<FitSource>,
+    /// With a fit: the best-ranked views given an interval (`None`: every view).
+    pub uncertainty_views: Option<usize>,
+}
+
+/// Where a material's fitted parameters and covariance come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FitSource {
+    /// A `fit.json` of `polbrdf fit`.
+    File(PathBuf),
+    /// A fit already read (e.g. from a `FitResult`).
+    Loaded(Box<FitCovariance>),
+}
+
+/// The ranges of a study's rows when the adapters are not given any: 1000 m.
+pub const DEFAULT_RANGES_M: [f64; 1] = [1000.0];
+
+impl DetectRequest {
+    /// The request `polbrdf detect --scene … --sensor …` and `polbrdf.detect(scene, sensor)`
+    /// make without further options: [`DetectRequest::default`] with the rows at
+    /// [`DEFAULT_RANGES_M`]. The adapters start from it and set what they are given, so that
+    /// their defaults are these.
+    pub fn new(scene: SceneSource, sensor: SensorSource) -> Self {
+        Self {
+            scene,
+            sensor,
+            ranges_m: DEFAULT_RANGES_M.to_vec(),
+            ..Self::default()
+        }
+    }
 }
 
 impl Default for DetectRequest {
     /// A 1°×2° grid, range search to 10 km, a 1 m² target, `P_fa = 10⁻⁶`, `P_d = 0.9`, every
-    /// feature; scene and sensor empty paths (to be given).
+    /// feature, no fit (intervals for the best ten views when fits are given), no row ranges;
+    /// scene and sensor empty paths (to be given). The adapters start from
+    /// [`DetectRequest::new`].
     fn default() -> Self {
         let c = Criteria::default();
         Self {
@@ -100,6 +152,9 @@ impl Default for DetectRequest {
             pd: c.pd_required,
             features: c.features,
             sun_deg: None,
+            target_fit: None,
+            background_fit: None,
+            uncertainty_views: Some(DEFAULT_UNCERTAINTY_VIEWS),
         }
     }
 }
@@ -120,6 +175,8 @@ pub struct ViewResult {
     pub at_ranges: Vec<Detection>,
     /// The detection range (with `search`).
     pub max_range: Option<MaxRange>,
+    /// Its uncertainty, with fits and for the views given one (docs/detection.md).
+    pub range_uncertainty: Option<RangeUncertainty>,
 }
 
 /// The result of [`detect`].
@@ -145,6 +202,10 @@ pub struct DetectStudy {
     pub ranges_m: Vec<f64>,
     /// Setup warnings.
     pub warnings: Vec<Warning>,
+    /// The target's and the background's fits, when given.
+    pub fits: [Option<FitCovariance>; 2],
+    /// With fits: the best-ranked views given an interval (`None`: every view).
+    pub uncertainty_views: Option<usize>,
 }
 
 /// The scene of the request, with the sun moved when asked.
@@ -288,13 +349,16 @@ fn observation(
     }
 }
 
-/// The observers of the target and the background over the sensor's spectrum, and the factor
-/// their observations are scaled by ([`observation`]).
+/// The target, the background and their observers.
+type Observers = (NamedMaterial, NamedMaterial, Observer, Observer);
+
+/// The observers of the target and the background over the sensor's spectrum, the spectrum
+/// they observe over and the factor their observations are scaled by ([`observation`]).
 fn observers(
     request: &DetectRequest,
     scene: &Scene,
     spectrum: &Spectrum,
-) -> TaskResult<(NamedMaterial, NamedMaterial, Observer, Observer, f64)> {
+) -> TaskResult<(Observers, Spectrum, f64)> {
     let target = material_of(request.target.as_deref(), "target", Some(&scene.target))?;
     let background = material_of(
         request.background.as_deref(),
@@ -309,7 +373,7 @@ fn observers(
     };
     let ot = observe(&target, scene.target.temperature_k)?;
     let ob = observe(&background, scene.background.temperature_k)?;
-    Ok((target, background, ot, ob, scale))
+    Ok(((target, background, ot, ob), spectrum, scale))
 }
 
 /// The ranges of a view's rows: the request's; without them (a search only), the view's
@@ -349,7 +413,8 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             ));
         }
     }
-    let (target, background, ot, ob, scale) = observers(request, &scene, &spectrum)?;
+    let ((target, background, ot, ob), observed, scale) = observers(request, &scene, &spectrum)?;
+    let fits = fits_of(request, [&target, &background])?;
     let quality = if grid.is_some() {
         Quality::Map
     } else {
@@ -377,7 +442,24 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             background: bs,
             at_ranges,
             max_range,
+            range_uncertainty: None,
         });
+    }
+    if fits.iter().any(Option::is_some) {
+        let propagation = Propagation {
+            detector: &detector,
+            scene: &scene,
+            materials: [&target, &background],
+            fits: [fits[0].as_ref(), fits[1].as_ref()],
+            spectrum: &observed,
+            scale,
+            quality,
+        };
+        let order = crate::detect_out::ranked_order(&views);
+        let n = request.uncertainty_views.unwrap_or(order.len());
+        for &i in order.iter().take(n) {
+            views[i].range_uncertainty = propagation.of_view(&views[i])?;
+        }
     }
     let warnings = crate::scene::contrast_warnings(&scene);
     Ok(DetectStudy {
@@ -391,5 +473,44 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
         views,
         ranges_m: request.ranges_m.clone(),
         warnings,
+        fits,
+        uncertainty_views: request.uncertainty_views,
     })
+}
+
+/// The request's fits, read and checked against the materials (before anything is computed).
+fn fits_of(
+    request: &DetectRequest,
+    materials: [&NamedMaterial; 2],
+) -> TaskResult<[Option<FitCovariance>; 2]> {
+    let sources = [
+        ("target_fit", "target", &request.target_fit),
+        ("background_fit", "background", &request.background_fit),
+    ];
+    if let Some((field, ..)) = sources.iter().find(|s| s.2.is_some()) {
+        if !request.search {
+            return Err(TaskError::usage(
+                *field,
+                "gives the detection range an interval, which needs the range search: it is \
+                 off",
+            ));
+        }
+        if request.uncertainty_views == Some(0) {
+            return Err(TaskError::invalid(
+                "uncertainty_views",
+                "0: give at least one view (or every view)",
+            ));
+        }
+    }
+    let mut out = [None, None];
+    for (k, (_, role, source)) in sources.into_iter().enumerate() {
+        let fit = match source {
+            None => continue,
+            Some(FitSource::File(p)) => FitCovariance::read(p)?,
+            Some(FitSource::Loaded(f)) => (**f).clone(),
+        };
+        fit.check_material(&materials[k].spec, role, &materials[k].source)?;
+        out[k] = Some(fit);
+    }
+    Ok(out)
 }

@@ -3,12 +3,16 @@
 //! arrays of the maps.
 
 use crate::detect::{DetectStudy, ViewResult};
+use crate::detect_unc::RangeUncertainty;
+use crate::fit_covariance::FitCovariance;
 use crate::hemisphere::deg;
 use polbrdf::analysis::detection::{estimate, Detection, MaxRange, NoiseModel, Path};
 use serde_json::{json, Value};
 
-/// The columns of `detect.csv`.
-pub const COLUMNS: [&str; 15] = [
+/// The columns of `detect.csv`: the numeric ones ([`NUMERIC`] of them, the values of a
+/// [`DetectRow`]), then `feature`, `saturated`, `max_range_m`, `max_range_feature` and the
+/// detection range's uncertainty (empty where none was computed).
+pub const COLUMNS: [&str; 18] = [
     "theta_r_deg",
     "phi_r_deg",
     "range_m",
@@ -24,7 +28,29 @@ pub const COLUMNS: [&str; 15] = [
     "saturated",
     "max_range_m",
     "max_range_feature",
+    "max_range_sigma_m",
+    "max_range_lo95_m",
+    "max_range_hi95_m",
 ];
+
+/// How many of [`COLUMNS`] lead as numbers (`theta_r_deg` … `pd`).
+pub const NUMERIC: usize = 11;
+
+/// The columns of the detection range's uncertainty, the last of [`COLUMNS`].
+pub const UNCERTAINTY_COLUMNS: [&str; 3] =
+    ["max_range_sigma_m", "max_range_lo95_m", "max_range_hi95_m"];
+
+/// `σ_R` and the 95 % interval of a view's range, NaN where there is none.
+pub fn uncertainty_values(u: Option<RangeUncertainty>) -> [f64; 3] {
+    match u {
+        Some(RangeUncertainty::Interval {
+            sigma_m,
+            lo_m,
+            hi_m,
+        }) => [sigma_m, lo_m, hi_m],
+        _ => [f64::NAN; 3],
+    }
+}
 
 /// `"beyond"`, `"not detectable"`, or the range.
 pub fn max_range_text(m: Option<MaxRange>) -> String {
@@ -53,6 +79,19 @@ fn polarization_contrast(d: &Detection) -> (f64, f64) {
     })
 }
 
+/// The indices of `views` ranked by detection range: beyond the limit first, then by range,
+/// largest first, then the views not detectable; ties in view order.
+pub fn ranked_order(views: &[ViewResult]) -> Vec<usize> {
+    let key = |v: &ViewResult| match v.max_range {
+        Some(MaxRange::Beyond) => f64::INFINITY,
+        Some(MaxRange::At { range_m, .. }) => range_m,
+        _ => f64::NEG_INFINITY,
+    };
+    let mut order: Vec<usize> = (0..views.len()).collect();
+    order.sort_by(|a, b| key(&views[*b]).total_cmp(&key(&views[*a])));
+    order
+}
+
 fn num(v: f64) -> Value {
     serde_json::Number::from_f64(v + 0.0).map_or(Value::Null, Value::Number)
 }
@@ -61,8 +100,8 @@ fn num(v: f64) -> Value {
 /// the adapters hand over as arrays.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DetectRow {
-    /// The numeric columns of [`COLUMNS`] up to `pd`, in their order (11 values).
-    pub values: [f64; 11],
+    /// The numeric columns of [`COLUMNS`] up to `pd`, in their order ([`NUMERIC`] values).
+    pub values: [f64; NUMERIC],
     /// The feature of this row's `d'` (`feature`).
     pub feature: &'static str,
     /// Whether a channel saturated (`saturated`).
@@ -72,6 +111,8 @@ pub struct DetectRow {
     pub max_range: Option<MaxRange>,
     /// The feature detecting at the view's detection range (empty when none).
     pub max_range_feature: &'static str,
+    /// The view's `σ_R` and 95 % interval ([`UNCERTAINTY_COLUMNS`]; NaN where none).
+    pub uncertainty: [f64; 3],
 }
 
 impl DetectStudy {
@@ -101,6 +142,7 @@ impl DetectStudy {
                         Some(MaxRange::At { feature, .. }) => feature.as_str(),
                         _ => "",
                     },
+                    uncertainty: uncertainty_values(v.range_uncertainty),
                 }
             })
         })
@@ -118,6 +160,11 @@ impl DetectStudy {
                 max_range_text(r.max_range),
                 r.max_range_feature.to_string(),
             ]);
+            fields.extend(
+                r.uncertainty
+                    .iter()
+                    .map(|x| if x.is_nan() { String::new() } else { f(*x) }),
+            );
             t.fields(fields);
         }
         t.into_bytes()
@@ -126,14 +173,10 @@ impl DetectStudy {
     /// The views ranked by detection range: beyond the limit first, then by range, largest
     /// first, then the views not detectable; ties in view order.
     pub fn ranked(&self) -> Vec<&ViewResult> {
-        let key = |v: &ViewResult| match v.max_range {
-            Some(MaxRange::Beyond) => f64::INFINITY,
-            Some(MaxRange::At { range_m, .. }) => range_m,
-            _ => f64::NEG_INFINITY,
-        };
-        let mut views: Vec<&ViewResult> = self.views.iter().collect();
-        views.sort_by(|a, b| key(b).total_cmp(&key(a)));
-        views
+        ranked_order(&self.views)
+            .into_iter()
+            .map(|i| &self.views[i])
+            .collect()
     }
 
     /// The path as JSON.
@@ -158,8 +201,24 @@ impl DetectStudy {
                 Some(MaxRange::At { range_m, feature }) => (num(range_m), json!(feature.as_str())),
                 other => (json!(max_range_text(other)), Value::Null),
             };
-            json!({"theta_r_deg": num(deg(v.theta_r)), "phi_r_deg": num(deg(v.phi_r)),
-                   "max_range_m": range, "feature": feature})
+            let mut e = json!({"theta_r_deg": num(deg(v.theta_r)), "phi_r_deg": num(deg(v.phi_r)),
+                   "max_range_m": range, "feature": feature});
+            if self.fits.iter().any(Option::is_some) {
+                let [sigma, lo, hi] = uncertainty_values(v.range_uncertainty);
+                e["max_range_sigma_m"] = num(sigma);
+                e["max_range_95_m"] = if sigma.is_nan() {
+                    Value::Null
+                } else {
+                    json!([num(lo), num(hi)])
+                };
+                e["uncertainty"] = json!(match v.range_uncertainty {
+                    Some(RangeUncertainty::Interval { .. }) => "interval",
+                    Some(RangeUncertainty::Undefined) => "undefined",
+                    None if matches!(v.max_range, Some(MaxRange::At { .. })) => "not computed",
+                    None => "no range",
+                });
+            }
+            e
         };
         let ranked: Vec<Value> = self.ranked().into_iter().map(entry).collect();
         let c = &self.detector.criteria;
@@ -186,6 +245,33 @@ impl DetectStudy {
                          "area_m2": num(self.detector.area_m2),
                          "features": c.features.iter().map(|f| f.as_str()).collect::<Vec<_>>()},
             "ranges_m": self.ranges_m.iter().map(|r| num(*r)).collect::<Vec<_>>(),
+            "uncertainty": self.uncertainty_json(),
+        })
+    }
+
+    /// `best.json`'s `uncertainty`: the fits, the confidence and `z`, the views given an
+    /// interval; `null` without fits.
+    fn uncertainty_json(&self) -> Value {
+        if self.fits.iter().all(Option::is_none) {
+            return Value::Null;
+        }
+        let fit = |f: &Option<FitCovariance>| {
+            f.as_ref().map(|f| {
+                json!({"source": f.source.display().to_string(),
+                       "parameters": f.params.iter().map(|p| p.name()).collect::<Vec<_>>(),
+                       "values": f.values.iter().map(|v| num(*v)).collect::<Vec<_>>(),
+                       "sigmas": f.sigmas().into_iter().map(num).collect::<Vec<_>>(),
+                       "held_fixed": f.held_fixed.iter().map(|(p, _)| p.name()).collect::<Vec<_>>()})
+            })
+        };
+        json!({
+            "method": "linear propagation, central differences (step σ/10), block-diagonal \
+                       joint covariance of the two fits",
+            "confidence": num(crate::detect_unc::CONFIDENCE),
+            "z": num(crate::detect_unc::z()),
+            "target_fit": fit(&self.fits[0]),
+            "background_fit": fit(&self.fits[1]),
+            "views": self.uncertainty_views.map_or(json!("all"), |n| json!(n)),
         })
     }
 
