@@ -42,6 +42,8 @@ pub(super) struct MuellerJob<'k, 'a, 's, 'o, G, W, const N: usize> {
     pub(super) out: &'o mut W,
     /// A finite entry beyond the output format's range.
     pub(super) overflow: bool,
+    /// Stopped at a block that failed validation ([`Blocks::valid`]).
+    pub(super) invalid: bool,
 }
 
 impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
@@ -58,6 +60,10 @@ impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W
         let n = self.out.len();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
+            if !self.src.valid(start, len) {
+                self.invalid = true;
+                break;
+            }
             let geo = self
                 .src
                 .geometry::<M, N, true>(start, len, needs, &mut scratch);
@@ -89,6 +95,8 @@ pub(super) struct MuellerF32Job<'k, 'a, 's, 'o, G, W, const N: usize> {
     pub(super) out: &'o mut W,
     /// A finite entry beyond f32's range.
     pub(super) overflow: bool,
+    /// Stopped at a block that failed validation ([`Blocks::valid`]).
+    pub(super) invalid: bool,
 }
 
 /// What the f64 blocks of [`MuellerF32Job`] work in.
@@ -221,6 +229,10 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
         let n = self.out.len();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
+            if !self.src.valid(start, len) {
+                self.invalid = true;
+                break;
+            }
             self.src
                 .geometry::<S1, N, true>(start, len, needs, &mut scratch);
             let geo = &scratch.geo;
@@ -242,7 +254,7 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
                 }
             }
         }
-        if wide.len > 0 {
+        if wide.len > 0 && !self.invalid {
             self.flush::<M>(&mut wide, &mut cache);
         }
         if k.stream32 {

@@ -9,7 +9,7 @@ use crate::engine::planes::Planes;
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result};
 use crate::geometry::batch::{Batch, Input};
-use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
+use crate::geometry::{AngleVariables, Geometry, GeometryBatch, Unvalidated};
 use crate::model::{Material, ModelParams};
 use crate::optics::dispersion::SpectralIndex;
 use crate::optics::mueller::Mueller;
@@ -17,7 +17,7 @@ use crate::optics::stokes::Stokes;
 use index::{index_ill, index_ill_for, IndexSource};
 use jobs::{dispatch, BrdfDolpJob, MuellerF32Job, MuellerJob, PrepareJob};
 use sinks::{Rows, Sink, SinkF32};
-use sources::{BatchSource, Blocks, Computed, Directions, F32Blocks, Variables};
+use sources::{BatchSource, Blocks, Checked, Computed, Directions, F32Blocks, Variables};
 
 mod index;
 mod jobs;
@@ -29,20 +29,36 @@ pub use jobs::{elementary_into, Elementary};
 pub use sources::Prepared;
 
 /// Runs `$body` with `$src` bound to the kernel's source of elements `$start .. $start + $len`
-/// of `$batch` (a [`Batch`]): angles or direction vectors.
+/// of `$batch` (a [`Batch`]): angles or direction vectors. With `checked`, of an
+/// [`Unvalidated`] batch, each source wrapped in [`Checked`] (validated block by block).
 macro_rules! with_source {
     ($batch:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
-        match $batch.input() {
+        with_source!(@ $batch.input(), $start, $len, , |$src| $body)
+    };
+    (checked $raw:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
+        with_source!(@ $raw.input(), $start, $len, Checked, |$src| $body)
+    };
+    (@ $input:expr, $start:expr, $len:expr, $($wrap:ident)?, |$src:ident| $body:expr) => {
+        match $input {
             Input::Angles(b) => {
-                let $src = Computed(BatchSource::new(&b, $start, $len));
+                let $src = $($wrap)?(Computed(BatchSource::new(&b, $start, $len)));
                 $body
             }
             Input::Directions(d) => {
-                let $src = Directions::new(&d, $start, $len);
+                let $src = $($wrap)?(Directions::new(&d, $start, $len));
                 $body
             }
         }
     };
+}
+
+/// How a run of the kernel ended.
+#[derive(Debug, Clone, Copy)]
+struct Outcome {
+    /// A finite entry beyond the output format's range.
+    overflow: bool,
+    /// Stopped at a block that failed validation (a [`Checked`] source).
+    invalid: bool,
 }
 
 /// Elements per block: every stage of the kernel runs over this many elements at a time.
@@ -260,16 +276,26 @@ impl<'a> Kernel<'a> {
     fn run_f32<W: SinkF32>(&self, batch: &impl Batch, start: usize, out: &mut W) -> bool {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
-            if self.scalar_only || !self.single {
-                return self.run_mueller::<_, _, BLOCK>(&src, index, out);
-            }
-            match self.level {
-                SimdLevel::Avx512 | SimdLevel::Avx2 => {
-                    self.f32_job::<_, _, BLOCK_F32_WIDE>(&src, index, out)
-                }
-                SimdLevel::Portable => self.f32_job::<_, _, BLOCK>(&src, index, out),
-            }
+            self.f32_source(&src, index, out).overflow
         })
+    }
+
+    /// The f32 kernel of `src` (or the f64 one, rounded, where the material asks).
+    fn f32_source<G: F32Blocks, W: SinkF32>(
+        &self,
+        src: &G,
+        index: IndexSource<'_>,
+        out: &mut W,
+    ) -> Outcome {
+        if self.scalar_only || !self.single {
+            return self.run_mueller::<_, _, BLOCK>(src, index, out);
+        }
+        match self.level {
+            SimdLevel::Avx512 | SimdLevel::Avx2 => {
+                self.f32_job::<_, _, BLOCK_F32_WIDE>(src, index, out)
+            }
+            SimdLevel::Portable => self.f32_job::<_, _, BLOCK>(src, index, out),
+        }
     }
 
     /// The f32 kernel over blocks of `N` elements.
@@ -278,16 +304,135 @@ impl<'a> Kernel<'a> {
         src: &G,
         index: IndexSource<'_>,
         out: &mut W,
-    ) -> bool {
+    ) -> Outcome {
         let mut job = MuellerF32Job::<_, _, N> {
             kernel: self,
             src,
             index,
             out,
             overflow: false,
+            invalid: false,
         };
         dispatch(self.level, &mut job);
-        job.overflow
+        Outcome {
+            overflow: job.overflow,
+            invalid: job.invalid,
+        }
+    }
+
+    /// As [`Kernel::mueller_into`] of an [`Unvalidated`] batch, validating each block of
+    /// elements as the kernel reads it (the same test as [`GeometryBatch::new`]'s and
+    /// [`crate::DirectionBatch::new`]'s, in the pass that reads the input: no pass of its own
+    /// over memory). The results of a valid batch are bit for bit those of
+    /// [`Kernel::mueller_into`].
+    ///
+    /// # Errors
+    /// At the first block with an invalid element the kernel stops, every entry of `out` is
+    /// set to NaN (never a partial result), and the error is the one the batch's constructor
+    /// gives for elements `start .. start + out.len()` ([`Unvalidated::validate`]: the same
+    /// element, field and message, the index in the batch's numbering).
+    ///
+    /// # Panics
+    /// When the range exceeds the batch (or a per-element index).
+    pub fn try_mueller_into(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut [[f64; 16]],
+    ) -> Result<()> {
+        self.try_f64(raw, start, &mut Rows(out)).map(|_| ())
+    }
+
+    /// As [`Kernel::try_mueller_into`] into planes ([`Kernel::mueller_planes_into`]).
+    ///
+    /// # Errors
+    /// As [`Kernel::try_mueller_into`].
+    ///
+    /// # Panics
+    /// As [`Kernel::try_mueller_into`].
+    pub fn try_mueller_planes_into(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut Planes<'_, f64>,
+    ) -> Result<()> {
+        self.try_f64(raw, start, out).map(|_| ())
+    }
+
+    /// As [`Kernel::mueller_f32_into`] of an [`Unvalidated`] batch, validated block by block
+    /// as [`Kernel::try_mueller_into`]. Returns whether some finite entry was beyond f32's
+    /// range.
+    ///
+    /// # Errors
+    /// As [`Kernel::try_mueller_into`].
+    ///
+    /// # Panics
+    /// As [`Kernel::try_mueller_into`].
+    pub fn try_mueller_f32_into(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut [[f32; 16]],
+    ) -> Result<bool> {
+        self.try_f32(raw, start, &mut Rows(out))
+    }
+
+    /// As [`Kernel::try_mueller_f32_into`] into planes ([`Kernel::mueller_planes_f32_into`]).
+    ///
+    /// # Errors
+    /// As [`Kernel::try_mueller_into`].
+    ///
+    /// # Panics
+    /// As [`Kernel::try_mueller_into`].
+    pub fn try_mueller_planes_f32_into(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut Planes<'_, f32>,
+    ) -> Result<bool> {
+        self.try_f32(raw, start, out)
+    }
+
+    fn try_f64<W: Sink>(&self, raw: &Unvalidated<'_>, start: usize, out: &mut W) -> Result<bool> {
+        let index = self.index_at(start, out.len());
+        let done = with_source!(checked raw, start, out.len(), |src| {
+            self.run_mueller::<_, _, BLOCK>(&src, index, out)
+        });
+        if !done.invalid {
+            return Ok(done.overflow);
+        }
+        Self::refuse(raw, start, out)?;
+        Ok(with_source!(@ raw.input(), start, out.len(), , |src| {
+            self.run_mueller::<_, _, BLOCK>(&src, index, out)
+        })
+        .overflow)
+    }
+
+    fn try_f32<W: SinkF32>(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut W,
+    ) -> Result<bool> {
+        let index = self.index_at(start, out.len());
+        let done = with_source!(checked raw, start, out.len(), |src| {
+            self.f32_source(&src, index, out)
+        });
+        if !done.invalid {
+            return Ok(done.overflow);
+        }
+        Self::refuse(raw, start, out)?;
+        Ok(with_source!(@ raw.input(), start, out.len(), , |src| {
+            self.f32_source(&src, index, out)
+        })
+        .overflow)
+    }
+
+    /// After a block failed validation: `out` set to NaN and the constructor's error for the
+    /// range. (The block test is the constructors' own, so the range fails theirs; were it
+    /// ever to pass, the caller evaluates the range as validated.)
+    fn refuse<W: Sink>(raw: &Unvalidated<'_>, start: usize, out: &mut W) -> Result<()> {
+        raw.validate(start, out.len()).inspect_err(|_| out.poison())
     }
 
     /// As [`Kernel::mueller_f32_into`], computed in f64 and each entry rounded to the nearest
@@ -305,6 +450,7 @@ impl<'a> Kernel<'a> {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
             self.run_mueller::<_, _, BLOCK>(&src, index, &mut Rows(out))
+                .overflow
         })
     }
 
@@ -478,14 +624,23 @@ impl<'a> Kernel<'a> {
         src: &G,
         index: IndexSource<'_>,
         out: &mut W,
-    ) -> bool {
+    ) -> Outcome {
         if self.scalar_only {
             let mut overflow = false;
             for i in 0..out.len() {
+                if !src.valid(i, 1) {
+                    return Outcome {
+                        overflow,
+                        invalid: true,
+                    };
+                }
                 let v = src.reference(self, index, i).pbrdf.to_row_major();
                 overflow |= out.put_one(i, &v);
             }
-            return overflow;
+            return Outcome {
+                overflow,
+                invalid: false,
+            };
         }
         let mut job = MuellerJob::<G, W, N> {
             kernel: self,
@@ -493,9 +648,13 @@ impl<'a> Kernel<'a> {
             index,
             out,
             overflow: false,
+            invalid: false,
         };
         dispatch(self.level_for(N), &mut job);
-        job.overflow
+        Outcome {
+            overflow: job.overflow,
+            invalid: job.invalid,
+        }
     }
 
     fn run_brdf_dolp<G: Blocks, const N: usize, const AOLP: bool>(

@@ -141,6 +141,10 @@ pub(super) trait Sink {
 
     /// Element `i` (row-major), returning as [`Sink::put_rows`].
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool;
+
+    /// Every entry of every element set to NaN (a job stopped at invalid input: the output
+    /// holds no partial result).
+    fn poison(&mut self);
 }
 
 /// A [`Sink`] of single precision, which also takes the f32 kernel's rows.
@@ -179,6 +183,11 @@ impl<O: MuellerOut> Sink for Rows<'_, O> {
     #[inline(always)]
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
         O::write_block(&mut self.0[i..i + 1], std::slice::from_ref(v))
+    }
+    fn poison(&mut self) {
+        for o in self.0.iter_mut() {
+            o.set(&[f64::NAN; 16]);
+        }
     }
 }
 
@@ -290,6 +299,12 @@ impl<T: PlaneElem> Sink for Planes<'_, T> {
             overflow |= over;
         }
         overflow
+    }
+    fn poison(&mut self) {
+        let (nan, _) = T::narrow(f64::NAN);
+        for plane in self.planes.iter_mut() {
+            plane.fill(nan);
+        }
     }
 }
 
