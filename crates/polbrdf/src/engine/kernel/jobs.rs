@@ -2,7 +2,7 @@
 //! each compiled once per instruction set and run at the kernel's ([`dispatch`]).
 
 use super::index::{IndexSource, SpectralCache};
-use super::sinks::{store_fence, Sink, SinkF32};
+use super::sinks::{store_fence, PutRows, SinkF32};
 use super::sources::{load, BatchSource, Blocks, F32Blocks, Prepared};
 use super::{Kernel, BLOCK};
 use crate::engine::block::{self, AngleNeeds, Front, GeomScratch, Lanes, Thresholds};
@@ -46,7 +46,7 @@ pub(super) struct MuellerJob<'k, 'a, 's, 'o, G, W, const N: usize> {
     pub(super) invalid: bool,
 }
 
-impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
+impl<G: Blocks, W: PutRows<f64>, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
@@ -242,8 +242,8 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
             refine_d::<M, G, N>(&scratch, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
-            self.out
-                .put_rows_f32(start, len, &rows, &mut staged, k.stream32);
+            self.overflow |=
+                PutRows::<f32>::put_rows(self.out, start, len, &rows, &mut staged, k.stream32);
             for j in 0..len {
                 if front.fallback[j] {
                     wide.pending[wide.len] = start + j;

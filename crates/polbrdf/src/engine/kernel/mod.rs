@@ -16,7 +16,7 @@ use crate::optics::mueller::Mueller;
 use crate::optics::stokes::Stokes;
 use index::{index_ill, index_ill_for, IndexSource};
 use jobs::{dispatch, BrdfDolpJob, MuellerF32Job, MuellerJob, PrepareJob};
-use sinks::{Rows, Sink, SinkF32};
+use sinks::{PutRows, Rows, Sink, SinkF32};
 use sources::{BatchSource, Blocks, Checked, Computed, Directions, F32Blocks, Variables};
 
 mod index;
@@ -393,7 +393,12 @@ impl<'a> Kernel<'a> {
         self.try_f32(raw, start, out)
     }
 
-    fn try_f64<W: Sink>(&self, raw: &Unvalidated<'_>, start: usize, out: &mut W) -> Result<bool> {
+    fn try_f64<W: PutRows<f64>>(
+        &self,
+        raw: &Unvalidated<'_>,
+        start: usize,
+        out: &mut W,
+    ) -> Result<bool> {
         let index = self.index_at(start, out.len());
         let done = with_source!(checked raw, start, out.len(), |src| {
             self.run_mueller::<_, _, BLOCK>(&src, index, out)
@@ -619,7 +624,7 @@ impl<'a> Kernel<'a> {
         }
     }
 
-    fn run_mueller<G: Blocks, W: Sink, const N: usize>(
+    fn run_mueller<G: Blocks, W: PutRows<f64>, const N: usize>(
         &self,
         src: &G,
         index: IndexSource<'_>,
