@@ -9,15 +9,15 @@ use crate::engine::planes::Planes;
 use crate::engine::simd::{simd_level, SimdLevel};
 use crate::error::{Error, Result};
 use crate::geometry::batch::{Batch, Input};
-use crate::geometry::{AngleVariables, Geometry, GeometryBatch, Unvalidated};
+use crate::geometry::{AngleVariables, Geometry, GeometryBatch};
 use crate::model::{Material, ModelParams};
 use crate::optics::dispersion::SpectralIndex;
 use crate::optics::mueller::Mueller;
 use crate::optics::stokes::Stokes;
 use index::{index_ill, index_ill_for, IndexSource};
 use jobs::{dispatch, BrdfDolpJob, MuellerF32Job, MuellerJob, PrepareJob};
-use sinks::{PutRows, Rows, Sink, SinkF32};
-use sources::{BatchSource, Blocks, Checked, Computed, Directions, F32Blocks, Variables};
+use sinks::{PutRows, Rows, SinkF32};
+use sources::{BatchSource, Blocks, Computed, Directions, F32Blocks, Variables};
 
 mod index;
 mod jobs;
@@ -30,7 +30,8 @@ pub use sources::Prepared;
 
 /// Runs `$body` with `$src` bound to the kernel's source of elements `$start .. $start + $len`
 /// of `$batch` (a [`Batch`]): angles or direction vectors. With `checked`, of an
-/// [`Unvalidated`] batch, each source wrapped in [`Checked`] (validated block by block).
+/// [`crate::geometry::Unvalidated`] batch, each source wrapped in `Checked` (validated block by
+/// block).
 macro_rules! with_source {
     ($batch:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
         with_source!(@ $batch.input(), $start, $len, , |$src| $body)
@@ -52,12 +53,15 @@ macro_rules! with_source {
     };
 }
 
+// After the macro, which it uses.
+mod validating;
+
 /// How a run of the kernel ended.
 #[derive(Debug, Clone, Copy)]
 struct Outcome {
     /// A finite entry beyond the output format's range.
     overflow: bool,
-    /// Stopped at a block that failed validation (a [`Checked`] source).
+    /// Stopped at a block that failed validation (a `Checked` source).
     invalid: bool,
 }
 
@@ -318,126 +322,6 @@ impl<'a> Kernel<'a> {
             overflow: job.overflow,
             invalid: job.invalid,
         }
-    }
-
-    /// As [`Kernel::mueller_into`] of an [`Unvalidated`] batch, validating each block of
-    /// elements as the kernel reads it (the same test as [`GeometryBatch::new`]'s and
-    /// [`crate::DirectionBatch::new`]'s, in the pass that reads the input: no pass of its own
-    /// over memory). The results of a valid batch are bit for bit those of
-    /// [`Kernel::mueller_into`].
-    ///
-    /// # Errors
-    /// At the first block with an invalid element the kernel stops, every entry of `out` is
-    /// set to NaN (never a partial result), and the error is the one the batch's constructor
-    /// gives for elements `start .. start + out.len()` ([`Unvalidated::validate`]: the same
-    /// element, field and message, the index in the batch's numbering).
-    ///
-    /// # Panics
-    /// When the range exceeds the batch (or a per-element index).
-    pub fn try_mueller_into(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut [[f64; 16]],
-    ) -> Result<()> {
-        self.try_f64(raw, start, &mut Rows(out)).map(|_| ())
-    }
-
-    /// As [`Kernel::try_mueller_into`] into planes ([`Kernel::mueller_planes_into`]).
-    ///
-    /// # Errors
-    /// As [`Kernel::try_mueller_into`].
-    ///
-    /// # Panics
-    /// As [`Kernel::try_mueller_into`].
-    pub fn try_mueller_planes_into(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut Planes<'_, f64>,
-    ) -> Result<()> {
-        self.try_f64(raw, start, out).map(|_| ())
-    }
-
-    /// As [`Kernel::mueller_f32_into`] of an [`Unvalidated`] batch, validated block by block
-    /// as [`Kernel::try_mueller_into`]. Returns whether some finite entry was beyond f32's
-    /// range.
-    ///
-    /// # Errors
-    /// As [`Kernel::try_mueller_into`].
-    ///
-    /// # Panics
-    /// As [`Kernel::try_mueller_into`].
-    pub fn try_mueller_f32_into(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut [[f32; 16]],
-    ) -> Result<bool> {
-        self.try_f32(raw, start, &mut Rows(out))
-    }
-
-    /// As [`Kernel::try_mueller_f32_into`] into planes ([`Kernel::mueller_planes_f32_into`]).
-    ///
-    /// # Errors
-    /// As [`Kernel::try_mueller_into`].
-    ///
-    /// # Panics
-    /// As [`Kernel::try_mueller_into`].
-    pub fn try_mueller_planes_f32_into(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut Planes<'_, f32>,
-    ) -> Result<bool> {
-        self.try_f32(raw, start, out)
-    }
-
-    fn try_f64<W: PutRows<f64>>(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut W,
-    ) -> Result<bool> {
-        let index = self.index_at(start, out.len());
-        let done = with_source!(checked raw, start, out.len(), |src| {
-            self.run_mueller::<_, _, BLOCK>(&src, index, out)
-        });
-        if !done.invalid {
-            return Ok(done.overflow);
-        }
-        Self::refuse(raw, start, out)?;
-        Ok(with_source!(@ raw.input(), start, out.len(), , |src| {
-            self.run_mueller::<_, _, BLOCK>(&src, index, out)
-        })
-        .overflow)
-    }
-
-    fn try_f32<W: SinkF32>(
-        &self,
-        raw: &Unvalidated<'_>,
-        start: usize,
-        out: &mut W,
-    ) -> Result<bool> {
-        let index = self.index_at(start, out.len());
-        let done = with_source!(checked raw, start, out.len(), |src| {
-            self.f32_source(&src, index, out)
-        });
-        if !done.invalid {
-            return Ok(done.overflow);
-        }
-        Self::refuse(raw, start, out)?;
-        Ok(with_source!(@ raw.input(), start, out.len(), , |src| {
-            self.f32_source(&src, index, out)
-        })
-        .overflow)
-    }
-
-    /// After a block failed validation: `out` set to NaN and the constructor's error for the
-    /// range. (The block test is the constructors' own, so the range fails theirs; were it
-    /// ever to pass, the caller evaluates the range as validated.)
-    fn refuse<W: Sink>(raw: &Unvalidated<'_>, start: usize, out: &mut W) -> Result<()> {
-        raw.validate(start, out.len()).inspect_err(|_| out.poison())
     }
 
     /// As [`Kernel::mueller_f32_into`], computed in f64 and each entry rounded to the nearest
