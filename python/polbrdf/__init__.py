@@ -293,7 +293,9 @@ def mueller(
         An array to write the result into (NumPy's ``out=`` convention), returned: shape
         ``broadcast_shape + (4, 4)`` (``(4, 4) + broadcast_shape`` for ``layout="planar"``),
         dtype float64 or float32 (the precision), C-contiguous and writeable. Reusing it saves
-        the allocation and the page faults of a new array.
+        the allocation and the page faults of a new array. When the call raises (an invalid
+        element is found as its block is read, after other parts were written), every entry
+        of ``out`` is NaN: it never holds a partial result.
     precision : {"float64", "float32"} or dtype, optional
         The result's dtype (default float64, or ``out``'s dtype). float32 computes the model
         in single precision, every entry within 1e-5·F00 + 1e-6·P of float64, P the F00 at the

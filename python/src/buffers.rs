@@ -8,9 +8,10 @@ use numpy::{
 use polbrdf::engine::batch::Split;
 use polbrdf::engine::Kernel;
 use polbrdf::engine::Planes;
-use polbrdf::Batch;
 use polbrdf::Engine;
 use polbrdf::Material;
+use polbrdf::Result;
+use polbrdf::Unvalidated;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -84,13 +85,32 @@ pub(crate) fn spread<'a>(
 }
 
 /// How a Mueller-matrix array is filled, chunk by chunk, whatever the kind of batch: the
-/// serial kernel's `mueller_into` (f64) or `mueller_f32_into` (f32, which reports an entry
-/// beyond f32's range).
+/// serial kernel's `try_mueller_into` (f64) or `try_mueller_f32_into` (f32, which reports an
+/// entry beyond f32's range), validating each block as it reads it.
 pub(crate) trait Store<T>: Sync {
-    /// Fills `rows` for `batch`; true when an entry overflowed f32.
-    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[T; 16]]) -> bool;
+    /// Fills `rows` for `batch`; true when an entry overflowed f32. An invalid element: the
+    /// batch constructor's error, `rows` all NaN.
+    fn store(&self, k: &Kernel<'_>, batch: &Unvalidated<'_>, rows: &mut [[T; 16]]) -> Result<bool>;
     /// Fills `planes` for `batch` (the planar layout); as [`Store::store`].
-    fn store_planes(&self, k: &Kernel<'_>, batch: &impl Batch, planes: &mut Planes<'_, T>) -> bool;
+    fn store_planes(
+        &self,
+        k: &Kernel<'_>,
+        batch: &Unvalidated<'_>,
+        planes: &mut Planes<'_, T>,
+    ) -> Result<bool>;
+}
+
+/// NaN of an output's element type (what an output holds after an error).
+pub(crate) trait Nan: Copy {
+    const NAN: Self;
+}
+
+impl Nan for f64 {
+    const NAN: f64 = f64::NAN;
+}
+
+impl Nan for f32 {
+    const NAN: f32 = f32::NAN;
 }
 
 /// Where a Python pBRDF call writes: one row-major 4×4 per geometry (an `(n, 16)` array), or
@@ -125,7 +145,12 @@ impl<T: Send> Split for Target<'_, T> {
 
 impl<T> Target<'_, T> {
     /// Fills the target through `store`; as [`Store::store`].
-    pub(crate) fn store(self, store: &impl Store<T>, k: &Kernel<'_>, batch: &impl Batch) -> bool {
+    pub(crate) fn store(
+        self,
+        store: &impl Store<T>,
+        k: &Kernel<'_>,
+        batch: &Unvalidated<'_>,
+    ) -> Result<bool> {
         match self {
             Target::Rows(r) => store.store(k, batch, r),
             Target::Planes(mut p) => store.store_planes(k, batch, &mut p),
@@ -148,17 +173,22 @@ impl StoreF64 {
 }
 
 impl Store<f64> for StoreF64 {
-    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f64; 16]]) -> bool {
+    fn store(&self, k: &Kernel<'_>, b: &Unvalidated<'_>, rows: &mut [[f64; 16]]) -> Result<bool> {
         if self.stream {
-            k.clone().streaming(true).mueller_into(batch, 0, rows);
+            k.clone().streaming(true).try_mueller_into(b, 0, rows)?;
         } else {
-            k.mueller_into(batch, 0, rows);
+            k.try_mueller_into(b, 0, rows)?;
         }
-        false
+        Ok(false)
     }
-    fn store_planes(&self, k: &Kernel<'_>, b: &impl Batch, planes: &mut Planes<'_, f64>) -> bool {
-        k.mueller_planes_into(b, 0, planes);
-        false
+    fn store_planes(
+        &self,
+        k: &Kernel<'_>,
+        b: &Unvalidated<'_>,
+        planes: &mut Planes<'_, f64>,
+    ) -> Result<bool> {
+        k.try_mueller_planes_into(b, 0, planes)?;
+        Ok(false)
     }
 }
 
@@ -177,15 +207,20 @@ impl StoreF32 {
 }
 
 impl Store<f32> for StoreF32 {
-    fn store(&self, k: &Kernel<'_>, batch: &impl Batch, rows: &mut [[f32; 16]]) -> bool {
+    fn store(&self, k: &Kernel<'_>, b: &Unvalidated<'_>, rows: &mut [[f32; 16]]) -> Result<bool> {
         if self.stream {
-            k.clone().streaming(true).mueller_f32_into(batch, 0, rows)
+            k.clone().streaming(true).try_mueller_f32_into(b, 0, rows)
         } else {
-            k.mueller_f32_into(batch, 0, rows)
+            k.try_mueller_f32_into(b, 0, rows)
         }
     }
-    fn store_planes(&self, k: &Kernel<'_>, b: &impl Batch, planes: &mut Planes<'_, f32>) -> bool {
-        k.mueller_planes_f32_into(b, 0, planes)
+    fn store_planes(
+        &self,
+        k: &Kernel<'_>,
+        b: &Unvalidated<'_>,
+        planes: &mut Planes<'_, f32>,
+    ) -> Result<bool> {
+        k.try_mueller_planes_f32_into(b, 0, planes)
     }
 }
 

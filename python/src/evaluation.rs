@@ -7,6 +7,7 @@ use crate::buffers::spread;
 use crate::buffers::vectors;
 use crate::buffers::zeros1;
 use crate::buffers::zeros2;
+use crate::buffers::Nan;
 use crate::buffers::Store;
 use crate::buffers::StoreF32;
 use crate::buffers::StoreF64;
@@ -21,7 +22,7 @@ use polbrdf::engine::batch::{try_for_chunks, Split};
 use polbrdf::engine::Planes;
 use polbrdf::engine::Precision;
 use polbrdf::Engine;
-use polbrdf::{DirectionBatch, GeometryBatch};
+use polbrdf::{GeometryBatch, Unvalidated};
 use polbrdf::{Material, MaterialSpec};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -136,19 +137,48 @@ pub(crate) fn broadcast_len(
 }
 
 /// Runs `f` on the geometries `start .. start + len` (`len ≤ CHUNK`) as a validated core batch
-/// ([`GeometryBatch::new`]) in radians. With `degrees` the chunk is first converted into a
-/// buffer on the stack (`f64::to_radians`, as `Geometry::from_degrees` does): the conversion
-/// happens in the same pass as the evaluation, with no whole-array temporaries.
-///
-/// An invalid angle is reported with its index in the whole array and, in degrees mode, with
-/// its value in degrees (as `Geometry::from_degrees` reports it); the name stays the Python
-/// argument's (`theta_i`, …).
+/// ([`GeometryBatch::new`]) in radians ([`chunk_angles`]).
 pub(crate) fn chunk_batch<T>(
     input: [&[f64]; 4],
     start: usize,
     len: usize,
     degrees: bool,
     f: impl FnOnce(&GeometryBatch<'_>) -> Result<T, polbrdf::Error>,
+) -> Result<T, polbrdf::Error> {
+    chunk_angles(input, start, len, degrees, |[ti, pi, tr, pr]| {
+        f(&GeometryBatch::new(ti, pi, tr, pr)?)
+    })
+}
+
+/// Runs `f` on the geometries `start .. start + len` (`len ≤ CHUNK`) in radians, not validated
+/// ([`Unvalidated`]: the kernel's `try_` methods validate each block as they read it, with
+/// the same errors as [`GeometryBatch::new`]) ([`chunk_angles`]).
+pub(crate) fn chunk_unvalidated<T>(
+    input: [&[f64]; 4],
+    start: usize,
+    len: usize,
+    degrees: bool,
+    f: impl FnOnce(&Unvalidated<'_>) -> Result<T, polbrdf::Error>,
+) -> Result<T, polbrdf::Error> {
+    chunk_angles(input, start, len, degrees, |[ti, pi, tr, pr]| {
+        f(&Unvalidated::angles(ti, pi, tr, pr)?)
+    })
+}
+
+/// Runs `f` on the four columns of the geometries `start .. start + len` (`len ≤ CHUNK`) in
+/// radians. With `degrees` the chunk is first converted into a buffer on the stack
+/// (`f64::to_radians`, as `Geometry::from_degrees` does): the conversion happens in the same
+/// pass as the evaluation, with no whole-array temporaries.
+///
+/// An invalid angle `f` reports (the core batch's validation) is reported with its index in
+/// the whole array and, in degrees mode, with its value in degrees (as
+/// `Geometry::from_degrees` reports it); the name stays the Python argument's (`theta_i`, …).
+fn chunk_angles<T>(
+    input: [&[f64]; 4],
+    start: usize,
+    len: usize,
+    degrees: bool,
+    f: impl FnOnce([&[f64]; 4]) -> Result<T, polbrdf::Error>,
 ) -> Result<T, polbrdf::Error> {
     // A single value (broadcast) stands for every element.
     let part = input.map(|s| {
@@ -171,7 +201,7 @@ pub(crate) fn chunk_batch<T>(
             *r = &b[..len];
         }
     }
-    let batch = GeometryBatch::new(rad[0], rad[1], rad[2], rad[3]).map_err(|e| match e {
+    f(rad).map_err(|e| match e {
         polbrdf::Error::InvalidAngle { index: Some(i), .. } if degrees => {
             // The element as given, in degrees, as `Geometry::from_degrees` checks it; named
             // by the Python argument.
@@ -206,8 +236,7 @@ pub(crate) fn chunk_batch<T>(
             problem,
         },
         other => other,
-    })?;
-    f(&batch)
+    })
 }
 
 /// Fills `rows` (one row-major 4×4 per geometry) through the core's parallel driver
@@ -236,8 +265,8 @@ pub(crate) fn mueller_rows<T: Send>(
 ) -> Result<(), polbrdf::Error> {
     mueller_chunks(rows, |start, rows| {
         let len = rows.len();
-        chunk_batch(input, start, len, degrees, |b| {
-            with_engine(m, wl, start, len, |e| Ok(rows.store(store, e.kernel(), b)))
+        chunk_unvalidated(input, start, len, degrees, |b| {
+            with_engine(m, wl, start, len, |e| rows.store(store, e.kernel(), b))
         })
     })
 }
@@ -259,18 +288,18 @@ pub(crate) fn direction_rows<T: Send>(
             spread(w_i, start, len, &mut bi),
             spread(w_r, start, len, &mut br),
         );
-        let batch = DirectionBatch::new(si, sr).map_err(|e| match e {
-            polbrdf::Error::InvalidDirection { name, value, index } => {
-                polbrdf::Error::InvalidDirection {
-                    name,
-                    value,
-                    index: index.map(|i| i + start),
+        let batch = Unvalidated::directions(si, sr)?;
+        with_engine(m, wl, start, len, |e| rows.store(store, e.kernel(), &batch)).map_err(|e| {
+            match e {
+                polbrdf::Error::InvalidDirection { name, value, index } => {
+                    polbrdf::Error::InvalidDirection {
+                        name,
+                        value,
+                        index: index.map(|i| i + start),
+                    }
                 }
+                other => other,
             }
-            other => other,
-        })?;
-        with_engine(m, wl, start, len, |e| {
-            Ok(rows.store(store, e.kernel(), &batch))
         })
     })
 }
@@ -362,9 +391,11 @@ pub(crate) fn mueller_directions_flat<'py>(
 
 /// [`mueller_flat`] in the element type `T` (numpy's `dtype`): `out` (checked by [`out_rows`])
 /// or a new `(n, 16)` array — `(16, n)` when `planar` — filled by `fill` ([`mueller_rows`],
-/// [`direction_rows`]) with the GIL released.
+/// [`direction_rows`]) with the GIL released. When `fill` fails (an invalid element, found as
+/// the kernel reads its block, after other chunks were written), every entry of the array is
+/// set to NaN before the error is raised: a caller's `out` never holds a partial result.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn mueller_array<'py, T: numpy::Element + Send>(
+pub(crate) fn mueller_array<'py, T: numpy::Element + Send + Nan>(
     py: Python<'py>,
     out: Option<Bound<'py, PyAny>>,
     n: usize,
@@ -386,7 +417,10 @@ pub(crate) fn mueller_array<'py, T: numpy::Element + Send>(
     } else {
         Target::Rows(flat.as_chunks_mut::<16>().0)
     };
-    py.detach(|| fill(target)).map_err(|e| core_err(py, &e))?;
+    if let Err(e) = py.detach(|| fill(target)) {
+        flat.fill(T::NAN);
+        return Err(core_err(py, &e));
+    }
     drop(rw);
     Ok(arr.into_any())
 }

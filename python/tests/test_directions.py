@@ -122,3 +122,17 @@ def test_shapes_and_types_are_checked() -> None:
     got = polbrdf.mueller_directions(PAINT, grid[:, ::2], np.array([0, 0, 1]))
     assert np.allclose(got, polbrdf.mueller(PAINT, 45.0, 0.0, 0.0, 0.0), rtol=1e-12, atol=0)
     assert polbrdf.mueller_directions(PAINT, np.empty((0, 3)), w).shape == (0, 4, 4)
+
+
+@pytest.mark.parametrize("precision", ["float64", "float32"])
+def test_a_bad_vector_in_the_last_block_leaves_out_all_nan(precision: str) -> None:
+    # Validated as the kernel reads each block: the other chunks are written first, then the
+    # whole of `out` is set to NaN (never a partial result), and the vector is named as before.
+    n = 3 * 4096 + 5
+    w_i, w_r = _random(n, seed=9)
+    w_r[-1] = [0.0, np.nan, 1.0]
+    out = np.full((n, 4, 4), 7.0, dtype=precision)
+    with pytest.raises(ValueError, match=rf"w_r.*index {n - 1}") as e:
+        polbrdf.mueller_directions(PAINT, w_i, w_r, out=out, precision=precision)
+    assert e.value.argument == "w_r" and e.value.index == n - 1
+    assert np.isnan(out).all()

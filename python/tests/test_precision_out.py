@@ -195,3 +195,33 @@ def test_planar_layout_and_its_out_are_checked(paint: polbrdf.Material) -> None:
     with pytest.raises(ValueError, match=r"shape \(3, 4, 4\)"):
         polbrdf.mueller(paint, t, 0.0, t, 180.0, out=np.empty((4, 4, 3)))
     assert polbrdf.mueller(paint, t[:0], 0.0, t[:0], 180.0, layout="planar").shape == (4, 4, 0)
+
+
+@pytest.mark.parametrize("layout", ["interleaved", "planar"])
+@pytest.mark.parametrize("precision", ["float64", "float32"])
+def test_an_invalid_late_element_is_named_and_out_holds_only_nan(
+    paint: polbrdf.Material, precision: str, layout: str
+) -> None:
+    # The kernel validates each block as it reads it, so other chunks (4096 elements, in
+    # parallel) are written before the last block's invalid element is met: the error still
+    # names the element and its index, and `out` is set to NaN, never left half-written.
+    n = 5 * 4096 + 17
+    for field, bad, message in [
+        (2, np.nan, r"`theta_r` = NaN \(at index 20496\)"),
+        (1, np.inf, r"`phi_i` = inf \(at index 20496\)"),
+        (0, -1.0, r"`theta_i` = -1 \(at index 20496\)"),
+    ]:
+        g = list(_geometries(n, seed=7))
+        g[field] = g[field].copy()
+        g[field][-1] = bad
+        shape = (n, 4, 4) if layout == "interleaved" else (4, 4, n)
+        out = np.full(shape, 7.0, dtype=precision)
+        with pytest.raises(ValueError, match=message) as e:
+            polbrdf.mueller(paint, *g, out=out, precision=precision, layout=layout)
+        assert e.value.index == n - 1
+        assert np.isnan(out).all()
+        # Valid input into the same array: the results, bit for bit.
+        g[field][-1] = 10.0
+        polbrdf.mueller(paint, *g, out=out, precision=precision, layout=layout)
+        want = polbrdf.mueller(paint, *g, precision=precision, layout=layout)
+        np.testing.assert_array_equal(out, want)

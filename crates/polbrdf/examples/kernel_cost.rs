@@ -5,7 +5,8 @@
 //! cargo run --release -p polbrdf --example kernel_cost -- ROUTE PRECISION COUNT [REPEATS] [LEVEL]
 //! ```
 //!
-//! `ROUTE` is `angles` or `directions`, `PRECISION` `f64` or `f32`, `LEVEL` `best` (default),
+//! `ROUTE` is `angles` or `directions`, or `angles-fold` or `directions-fold` (below),
+//! `PRECISION` `f64` or `f32`, `LEVEL` `best` (default),
 //! `avx512`, `avx2+fma` or `portable`. It evaluates the peer benchmark's conductor
 //! (`scripts/bench-peers`: n = 1.2, k = 7, σ = atan 0.2, shadowing off) at `COUNT` random
 //! geometries (θ uniform in [0°, 89.9°], φ in [0°, 360°), the same as `polbrdf bench`), row
@@ -13,11 +14,18 @@
 //! batches' validation and of each repeat (the thread's), and a checksum. Under `valgrind --tool=callgrind` two counts give the
 //! instructions per element: `(I(N₂) − I(N₁))/(N₂ − N₁)` (valgrind has no AVX-512: it runs the
 //! AVX2 code).
+//!
+//! The `-fold` routes time, alternately in each repeat, the two ways of evaluating input not
+//! validated yet chunk by chunk (4096 elements, as Python's `mueller` does on each thread): the
+//! batch constructor's validation then the kernel (`GeometryBatch::new` or
+//! `DirectionBatch::new`, then `mueller_into`), and the kernel validating each block as it
+//! reads it (`Unvalidated`, `try_mueller_into`); they print both and the paired ratio of each
+//! repeat, then the median.
 
 use polbrdf::engine::{Kernel, SimdLevel};
 use polbrdf::geometry::direction;
 use polbrdf::sample::SplitMix64;
-use polbrdf::{DirectionBatch, GeometryBatch, MaterialSpec};
+use polbrdf::{DirectionBatch, GeometryBatch, MaterialSpec, Unvalidated};
 
 /// The CPU time (ns) of `clock` (the thread's, or the process's).
 fn clock_ns(clock: libc::clockid_t) -> u128 {
@@ -78,6 +86,52 @@ fn main() {
         (end - mid) as f64 / n as f64
     );
     let (mut out64, mut out32) = (vec![[0.0f64; 16]; n], vec![[0.0f32; 16]; n]);
+    if let Some(route) = route.strip_suffix("-fold") {
+        let inputs = Inputs {
+            cols: &cols,
+            w_i: &w_i,
+            w_r: &w_r,
+        };
+        let f32 = precision == "f32";
+        // On a worker of a one-thread pool, as Python's chunks run (the constructors'
+        // validation is itself parallel: from outside the pool each call would pay for
+        // sending its work there); each way once untimed (the output's pages), then in
+        // alternating order.
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .expect("a thread pool");
+        let mut ratios = pool.install(|| {
+            for folded in [false, true] {
+                inputs.chunks(&kernel, route, f32, folded, &mut out64, &mut out32);
+            }
+            let mut ratios = vec![];
+            for r in 0..repeats {
+                let mut ns = [0.0; 2];
+                for k in 0..2 {
+                    let folded = (k + r) % 2 == 1;
+                    let start = cpu_ns();
+                    inputs.chunks(&kernel, route, f32, folded, &mut out64, &mut out32);
+                    ns[usize::from(folded)] = (cpu_ns() - start) as f64 / n as f64;
+                }
+                println!(
+                    "validate then evaluate {:.3} ns/element, folded {:.3} ns/element: {:.3}x",
+                    ns[0],
+                    ns[1],
+                    ns[0] / ns[1]
+                );
+                ratios.push(ns[0] / ns[1]);
+            }
+            ratios
+        });
+        ratios.sort_by(f64::total_cmp);
+        println!(
+            "{route} {precision} at {}: median speed-up of the folded validation {:.3}x",
+            level.name(),
+            ratios[ratios.len() / 2]
+        );
+        return;
+    }
     let mut checksum = 0.0;
     for _ in 0..repeats {
         let start = cpu_ns();
@@ -104,4 +158,61 @@ fn main() {
         "{route} {precision} at {}: checksum {checksum:.9e}",
         level.name()
     );
+}
+
+/// The benchmark's inputs, for the `-fold` routes.
+struct Inputs<'a> {
+    cols: &'a [Vec<f64>; 4],
+    w_i: &'a [[f64; 3]],
+    w_r: &'a [[f64; 3]],
+}
+
+impl Inputs<'_> {
+    /// Every element, 4096 at a time: validated by the batch's constructor then evaluated, or
+    /// (`folded`) validated by the kernel as it reads each block.
+    fn chunks(
+        &self,
+        kernel: &Kernel<'_>,
+        route: &str,
+        f32: bool,
+        folded: bool,
+        out64: &mut [[f64; 16]],
+        out32: &mut [[f32; 16]],
+    ) {
+        const CHUNK: usize = 4096;
+        for start in (0..self.w_i.len()).step_by(CHUNK) {
+            let r = start..(start + CHUNK).min(self.w_i.len());
+            let (o64, o32) = (&mut out64[r.clone()], &mut out32[r.clone()]);
+            let [ti, pi, tr, pr] = self.cols.each_ref().map(|c| &c[r.clone()]);
+            let (wi, wr) = (&self.w_i[r.clone()], &self.w_r[r.clone()]);
+            let angles = route == "angles";
+            if folded {
+                let raw = if angles {
+                    Unvalidated::angles(ti, pi, tr, pr)
+                } else {
+                    Unvalidated::directions(wi, wr)
+                }
+                .expect("lengths");
+                if f32 {
+                    kernel.try_mueller_f32_into(&raw, 0, o32).expect("valid");
+                } else {
+                    kernel.try_mueller_into(&raw, 0, o64).expect("valid");
+                }
+            } else if angles {
+                let b = GeometryBatch::new(ti, pi, tr, pr).expect("valid");
+                if f32 {
+                    kernel.mueller_f32_into(&b, 0, o32);
+                } else {
+                    kernel.mueller_into(&b, 0, o64);
+                }
+            } else {
+                let b = DirectionBatch::new(wi, wr).expect("valid");
+                if f32 {
+                    kernel.mueller_f32_into(&b, 0, o32);
+                } else {
+                    kernel.mueller_into(&b, 0, o64);
+                }
+            }
+        }
+    }
 }

@@ -48,7 +48,7 @@ pub use analysis::{
 pub use engine::batch;
 pub use engine::{Engine, IndexColumns};
 pub use error::{AngleProblem, Error, Result};
-pub use geometry::{AngleVariables, Batch, DirectionBatch, Geometry, GeometryBatch};
+pub use geometry::{AngleVariables, Batch, DirectionBatch, Geometry, GeometryBatch, Unvalidated};
 pub use model::presets::{self, preset};
 pub use model::{
     AzimuthTerm, Distribution, Evaluation, Form, Material, MaterialSpec, Shadowing, SurfaceTerms,

@@ -19,4 +19,5 @@ mod properties;
 mod spectral;
 mod sun_position;
 mod uncertainty;
+mod validated_read;
 mod vectors;

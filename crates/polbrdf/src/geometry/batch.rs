@@ -60,21 +60,23 @@ impl<'a> GeometryBatch<'a> {
     /// `[0, π]`, azimuths within ±[`crate::MAX_AZIMUTH_DEG`] (in radians), all finite (a NaN or
     /// an infinity fails a comparison). Branch-free, so that it vectorizes.
     fn all_valid(&self, range: std::ops::Range<usize>) -> bool {
-        let max_azimuth = crate::MAX_AZIMUTH_DEG.to_radians();
-        let pi = std::f64::consts::PI;
-        let zenith = |x: f64| (x >= 0.0) & (x <= pi);
-        let azimuth = |x: f64| x.abs() <= max_azimuth;
-        let ti = &self.theta_i[range.clone()];
-        let pi_ = &self.phi_i[range.clone()];
-        let tr = &self.theta_r[range.clone()];
-        let pr = &self.phi_r[range];
-        ti.iter()
-            .zip(pi_)
-            .zip(tr)
-            .zip(pr)
-            .fold(true, |ok, (((&ti, &pi), &tr), &pr)| {
-                ok & zenith(ti) & azimuth(pi) & zenith(tr) & azimuth(pr)
-            })
+        angles_valid(self.columns().map(|c| &c[range.clone()]))
+    }
+
+    /// The four slices as they are, not validated (for [`Unvalidated`]: the kernel validates
+    /// them as it reads them).
+    fn unvalidated(
+        theta_i: &'a [f64],
+        phi_i: &'a [f64],
+        theta_r: &'a [f64],
+        phi_r: &'a [f64],
+    ) -> Self {
+        Self {
+            theta_i,
+            phi_i,
+            theta_r,
+            phi_r,
+        }
     }
 
     /// Number of geometries.
@@ -153,19 +155,17 @@ impl<'a> DirectionBatch<'a> {
     /// `w_r`), the vector and its index.
     pub fn new(w_i: &'a [[f64; 3]], w_r: &'a [[f64; 3]]) -> Result<Self> {
         check_len("w_r", w_r.len(), w_i.len())?;
-        let ok = |w: &[f64; 3]| {
-            let n2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-            let (lo, hi) = crate::geometry::angles::DIRECTION_LENGTH;
-            (n2 >= lo * lo) & (n2 <= hi * hi)
-        };
         for (name, ws) in [("w_i", w_i), ("w_r", w_r)] {
             ws.par_chunks(CHUNK)
                 .enumerate()
                 .try_for_each(|(c, chunk)| {
-                    if chunk.iter().fold(true, |a, w| a & ok(w)) {
+                    if vectors_valid(chunk) {
                         return Ok(());
                     }
-                    let j = chunk.iter().position(|w| !ok(w)).expect("a failed vector");
+                    let j = chunk
+                        .iter()
+                        .position(|w| !vector_valid(w))
+                        .expect("a failed vector");
                     Err(Error::InvalidDirection {
                         name,
                         value: chunk[j],
@@ -196,6 +196,143 @@ impl<'a> DirectionBatch<'a> {
         let (ti, pi) = crate::geometry::angles::direction_angles(self.w_i[i]);
         let (tr, pr) = crate::geometry::angles::direction_angles(self.w_r[i]);
         Geometry::new_unchecked(ti, pi, tr, pr)
+    }
+}
+
+/// Whether every element of four equally long columns of angles (radians) passes
+/// [`Geometry::checked`]: zenith angles in `[0, π]`, azimuths within
+/// ±[`crate::MAX_AZIMUTH_DEG`] (in radians), all finite (a NaN or an infinity fails a
+/// comparison). Branch-free, so that it vectorizes.
+#[inline(always)]
+pub(crate) fn angles_valid([ti, pi_, tr, pr]: [&[f64]; 4]) -> bool {
+    let max_azimuth = crate::MAX_AZIMUTH_DEG.to_radians();
+    let pi = std::f64::consts::PI;
+    let zenith = |x: f64| (x >= 0.0) & (x <= pi);
+    let azimuth = |x: f64| x.abs() <= max_azimuth;
+    ti.iter()
+        .zip(pi_)
+        .zip(tr)
+        .zip(pr)
+        .fold(true, |ok, (((&ti, &pi), &tr), &pr)| {
+            ok & zenith(ti) & azimuth(pi) & zenith(tr) & azimuth(pr)
+        })
+}
+
+/// Whether a direction vector is valid for [`DirectionBatch::new`]: finite, with a length in
+/// [`crate::geometry::angles::DIRECTION_LENGTH`].
+#[inline(always)]
+pub(crate) fn vector_valid(w: &[f64; 3]) -> bool {
+    let n2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    let (lo, hi) = crate::geometry::angles::DIRECTION_LENGTH;
+    (n2 >= lo * lo) & (n2 <= hi * hi)
+}
+
+/// Whether every vector of `ws` is [`vector_valid`] (branch-free).
+#[inline(always)]
+pub(crate) fn vectors_valid(ws: &[[f64; 3]]) -> bool {
+    ws.iter().fold(true, |a, w| a & vector_valid(w))
+}
+
+/// Angles or direction vectors as given, not validated yet: the kernel's validating entry
+/// points ([`crate::engine::Kernel::try_mueller_into`] and its siblings) check each block of
+/// elements as they read it, so that a caller that evaluates its input once also reads it once
+/// (Python's `mueller` and `mueller_directions`). On an invalid element they stop, set every
+/// result of their range to NaN (never a partial result) and return the error
+/// [`GeometryBatch::new`] or [`DirectionBatch::new`] gives for that range — the same element,
+/// field and message. Only the lengths are checked here.
+#[derive(Debug, Clone, Copy)]
+pub struct Unvalidated<'a>(Input<'a>);
+
+impl<'a> Unvalidated<'a> {
+    /// Four slices of angles in radians, as [`GeometryBatch::new`] takes them.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`].
+    pub fn angles(
+        theta_i: &'a [f64],
+        phi_i: &'a [f64],
+        theta_r: &'a [f64],
+        phi_r: &'a [f64],
+    ) -> Result<Self> {
+        let n = theta_i.len();
+        for (name, s) in [("phi_i", phi_i), ("theta_r", theta_r), ("phi_r", phi_r)] {
+            check_len(name, s.len(), n)?;
+        }
+        Ok(Self(Input::Angles(GeometryBatch::unvalidated(
+            theta_i, phi_i, theta_r, phi_r,
+        ))))
+    }
+
+    /// Two slices of direction vectors, as [`DirectionBatch::new`] takes them.
+    ///
+    /// # Errors
+    /// [`Error::LengthMismatch`].
+    pub fn directions(w_i: &'a [[f64; 3]], w_r: &'a [[f64; 3]]) -> Result<Self> {
+        check_len("w_r", w_r.len(), w_i.len())?;
+        Ok(Self(Input::Directions(DirectionBatch { w_i, w_r })))
+    }
+
+    /// Number of geometries.
+    pub fn len(&self) -> usize {
+        match self.0 {
+            Input::Angles(b) => b.len(),
+            Input::Directions(d) => d.len(),
+        }
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The input, not validated (for the kernel's validating sources only).
+    pub(crate) fn input(&self) -> Input<'a> {
+        self.0
+    }
+
+    /// The validation of elements `start .. start + len` as [`GeometryBatch::new`] or
+    /// [`DirectionBatch::new`] does it (the index of an invalid element in this batch's
+    /// numbering).
+    ///
+    /// # Errors
+    /// As those constructors.
+    pub fn validate(&self, start: usize, len: usize) -> Result<()> {
+        let r = start..start + len;
+        let shift = |e: Error| match e {
+            Error::InvalidAngle {
+                name,
+                value,
+                degrees,
+                index,
+                problem,
+            } => Error::InvalidAngle {
+                name,
+                value,
+                degrees,
+                index: index.map(|i| i + start),
+                problem,
+            },
+            Error::InvalidDirection { name, value, index } => Error::InvalidDirection {
+                name,
+                value,
+                index: index.map(|i| i + start),
+            },
+            other => other,
+        };
+        match self.0 {
+            Input::Angles(b) => {
+                let [ti, pi, tr, pr] = b.columns().map(|c| &c[r.clone()]);
+                GeometryBatch::new(ti, pi, tr, pr)
+                    .map(|_| ())
+                    .map_err(shift)
+            }
+            Input::Directions(d) => {
+                let (wi, wr) = d.directions();
+                DirectionBatch::new(&wi[r.clone()], &wr[r])
+                    .map(|_| ())
+                    .map_err(shift)
+            }
+        }
     }
 }
 

@@ -10,5 +10,5 @@ pub mod rusinkiewicz;
 pub(crate) mod vectors;
 
 pub use angles::AngleVariables;
-pub use batch::{Batch, DirectionBatch, GeometryBatch};
+pub use batch::{Batch, DirectionBatch, GeometryBatch, Unvalidated};
 pub use direction::{direction, Geometry};

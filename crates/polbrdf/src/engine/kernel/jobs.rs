@@ -2,7 +2,7 @@
 //! each compiled once per instruction set and run at the kernel's ([`dispatch`]).
 
 use super::index::{IndexSource, SpectralCache};
-use super::sinks::{store_fence, Sink, SinkF32};
+use super::sinks::{store_fence, PutRows, SinkF32};
 use super::sources::{load, BatchSource, Blocks, F32Blocks, Prepared};
 use super::{Kernel, BLOCK};
 use crate::engine::block::{self, AngleNeeds, Front, GeomScratch, Lanes, Thresholds};
@@ -42,9 +42,11 @@ pub(super) struct MuellerJob<'k, 'a, 's, 'o, G, W, const N: usize> {
     pub(super) out: &'o mut W,
     /// A finite entry beyond the output format's range.
     pub(super) overflow: bool,
+    /// Stopped at a block that failed validation ([`Blocks::valid`]).
+    pub(super) invalid: bool,
 }
 
-impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
+impl<G: Blocks, W: PutRows<f64>, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W, N> {
     #[inline(always)]
     fn run<M: Math<F = f64>, S: Math<F = f32>>(&mut self) {
         let k = self.kernel;
@@ -58,6 +60,10 @@ impl<G: Blocks, W: Sink, const N: usize> Job for MuellerJob<'_, '_, '_, '_, G, W
         let n = self.out.len();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
+            if !self.src.valid(start, len) {
+                self.invalid = true;
+                break;
+            }
             let geo = self
                 .src
                 .geometry::<M, N, true>(start, len, needs, &mut scratch);
@@ -89,6 +95,8 @@ pub(super) struct MuellerF32Job<'k, 'a, 's, 'o, G, W, const N: usize> {
     pub(super) out: &'o mut W,
     /// A finite entry beyond f32's range.
     pub(super) overflow: bool,
+    /// Stopped at a block that failed validation ([`Blocks::valid`]).
+    pub(super) invalid: bool,
 }
 
 /// What the f64 blocks of [`MuellerF32Job`] work in.
@@ -221,6 +229,10 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
         let n = self.out.len();
         for start in (0..n).step_by(N) {
             let len = N.min(n - start);
+            if !self.src.valid(start, len) {
+                self.invalid = true;
+                break;
+            }
             self.src
                 .geometry::<S1, N, true>(start, len, needs, &mut scratch);
             let geo = &scratch.geo;
@@ -230,8 +242,8 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
             refine_d::<M, G, N>(&scratch, len, k.params.distribution, d, tail, fb);
             block::front_terms::<S1, N>(&k.params, geo, &mut front);
             block::mueller::<S1, N>(&mut front, geo, &mut rows);
-            self.out
-                .put_rows_f32(start, len, &rows, &mut staged, k.stream32);
+            self.overflow |=
+                PutRows::<f32>::put_rows(self.out, start, len, &rows, &mut staged, k.stream32);
             for j in 0..len {
                 if front.fallback[j] {
                     wide.pending[wide.len] = start + j;
@@ -242,7 +254,7 @@ impl<G: F32Blocks, W: SinkF32, const N: usize> Job for MuellerF32Job<'_, '_, '_,
                 }
             }
         }
-        if wide.len > 0 {
+        if wide.len > 0 && !self.invalid {
             self.flush::<M>(&mut wide, &mut cache);
         }
         if k.stream32 {

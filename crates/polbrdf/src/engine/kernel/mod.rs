@@ -16,7 +16,7 @@ use crate::optics::mueller::Mueller;
 use crate::optics::stokes::Stokes;
 use index::{index_ill, index_ill_for, IndexSource};
 use jobs::{dispatch, BrdfDolpJob, MuellerF32Job, MuellerJob, PrepareJob};
-use sinks::{Rows, Sink, SinkF32};
+use sinks::{PutRows, Rows, SinkF32};
 use sources::{BatchSource, Blocks, Computed, Directions, F32Blocks, Variables};
 
 mod index;
@@ -29,20 +29,40 @@ pub use jobs::{elementary_into, Elementary};
 pub use sources::Prepared;
 
 /// Runs `$body` with `$src` bound to the kernel's source of elements `$start .. $start + $len`
-/// of `$batch` (a [`Batch`]): angles or direction vectors.
+/// of `$batch` (a [`Batch`]): angles or direction vectors. With `checked`, of an
+/// [`crate::geometry::Unvalidated`] batch, each source wrapped in `Checked` (validated block by
+/// block).
 macro_rules! with_source {
     ($batch:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
-        match $batch.input() {
+        with_source!(@ $batch.input(), $start, $len, , |$src| $body)
+    };
+    (checked $raw:expr, $start:expr, $len:expr, |$src:ident| $body:expr) => {
+        with_source!(@ $raw.input(), $start, $len, Checked, |$src| $body)
+    };
+    (@ $input:expr, $start:expr, $len:expr, $($wrap:ident)?, |$src:ident| $body:expr) => {
+        match $input {
             Input::Angles(b) => {
-                let $src = Computed(BatchSource::new(&b, $start, $len));
+                let $src = $($wrap)?(Computed(BatchSource::new(&b, $start, $len)));
                 $body
             }
             Input::Directions(d) => {
-                let $src = Directions::new(&d, $start, $len);
+                let $src = $($wrap)?(Directions::new(&d, $start, $len));
                 $body
             }
         }
     };
+}
+
+// After the macro, which it uses.
+mod validating;
+
+/// How a run of the kernel ended.
+#[derive(Debug, Clone, Copy)]
+struct Outcome {
+    /// A finite entry beyond the output format's range.
+    overflow: bool,
+    /// Stopped at a block that failed validation (a `Checked` source).
+    invalid: bool,
 }
 
 /// Elements per block: every stage of the kernel runs over this many elements at a time.
@@ -260,16 +280,26 @@ impl<'a> Kernel<'a> {
     fn run_f32<W: SinkF32>(&self, batch: &impl Batch, start: usize, out: &mut W) -> bool {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
-            if self.scalar_only || !self.single {
-                return self.run_mueller::<_, _, BLOCK>(&src, index, out);
-            }
-            match self.level {
-                SimdLevel::Avx512 | SimdLevel::Avx2 => {
-                    self.f32_job::<_, _, BLOCK_F32_WIDE>(&src, index, out)
-                }
-                SimdLevel::Portable => self.f32_job::<_, _, BLOCK>(&src, index, out),
-            }
+            self.f32_source(&src, index, out).overflow
         })
+    }
+
+    /// The f32 kernel of `src` (or the f64 one, rounded, where the material asks).
+    fn f32_source<G: F32Blocks, W: SinkF32>(
+        &self,
+        src: &G,
+        index: IndexSource<'_>,
+        out: &mut W,
+    ) -> Outcome {
+        if self.scalar_only || !self.single {
+            return self.run_mueller::<_, _, BLOCK>(src, index, out);
+        }
+        match self.level {
+            SimdLevel::Avx512 | SimdLevel::Avx2 => {
+                self.f32_job::<_, _, BLOCK_F32_WIDE>(src, index, out)
+            }
+            SimdLevel::Portable => self.f32_job::<_, _, BLOCK>(src, index, out),
+        }
     }
 
     /// The f32 kernel over blocks of `N` elements.
@@ -278,16 +308,20 @@ impl<'a> Kernel<'a> {
         src: &G,
         index: IndexSource<'_>,
         out: &mut W,
-    ) -> bool {
+    ) -> Outcome {
         let mut job = MuellerF32Job::<_, _, N> {
             kernel: self,
             src,
             index,
             out,
             overflow: false,
+            invalid: false,
         };
         dispatch(self.level, &mut job);
-        job.overflow
+        Outcome {
+            overflow: job.overflow,
+            invalid: job.invalid,
+        }
     }
 
     /// As [`Kernel::mueller_f32_into`], computed in f64 and each entry rounded to the nearest
@@ -305,6 +339,7 @@ impl<'a> Kernel<'a> {
         let index = self.index_at(start, out.len());
         with_source!(batch, start, out.len(), |src| {
             self.run_mueller::<_, _, BLOCK>(&src, index, &mut Rows(out))
+                .overflow
         })
     }
 
@@ -473,19 +508,28 @@ impl<'a> Kernel<'a> {
         }
     }
 
-    fn run_mueller<G: Blocks, W: Sink, const N: usize>(
+    fn run_mueller<G: Blocks, W: PutRows<f64>, const N: usize>(
         &self,
         src: &G,
         index: IndexSource<'_>,
         out: &mut W,
-    ) -> bool {
+    ) -> Outcome {
         if self.scalar_only {
             let mut overflow = false;
             for i in 0..out.len() {
+                if !src.valid(i, 1) {
+                    return Outcome {
+                        overflow,
+                        invalid: true,
+                    };
+                }
                 let v = src.reference(self, index, i).pbrdf.to_row_major();
                 overflow |= out.put_one(i, &v);
             }
-            return overflow;
+            return Outcome {
+                overflow,
+                invalid: false,
+            };
         }
         let mut job = MuellerJob::<G, W, N> {
             kernel: self,
@@ -493,9 +537,13 @@ impl<'a> Kernel<'a> {
             index,
             out,
             overflow: false,
+            invalid: false,
         };
         dispatch(self.level_for(N), &mut job);
-        job.overflow
+        Outcome {
+            overflow: job.overflow,
+            invalid: job.invalid,
+        }
     }
 
     fn run_brdf_dolp<G: Blocks, const N: usize, const AOLP: bool>(

@@ -121,50 +121,48 @@ pub(super) fn stream_to<T>(dst: &[T], stream: bool) -> bool {
 }
 
 /// Where a job's results go: the caller's row-major array ([`Rows`]) or its planes
-/// ([`Planes`]), written a block (or one element) at a time at positions relative to the job's
-/// start.
+/// ([`Planes`]), written a block ([`PutRows`]) or one element at a time at positions relative
+/// to the job's start.
 pub(super) trait Sink {
     /// The number of elements.
     fn len(&self) -> usize;
 
+    /// Element `i` (row-major). Returns whether a finite value became infinite (only a
+    /// narrower format can overflow).
+    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool;
+
+    /// Every entry of every element set to NaN (a job stopped at invalid input: the output
+    /// holds no partial result).
+    fn poison(&mut self);
+}
+
+/// A [`Sink`] that takes a block's rows of lanes of `L`: f64 from the f64 kernel, f32 from the
+/// f32 kernel.
+pub(super) trait PutRows<L>: Sink {
     /// Elements `start .. start + len` from a block's 16 rows of lanes (entry-major), through
-    /// `staged` where needed; `stream` as [`MuellerOut::write_rows`]. Returns whether a finite
-    /// value became infinite (only a narrower format can overflow).
+    /// `staged` where needed; `stream`: whole blocks of row-major outputs with non-temporal
+    /// stores where the format and the destination allow ([`MuellerOut::write_rows`]). Returns
+    /// as [`Sink::put_one`].
     fn put_rows<const N: usize>(
         &mut self,
         start: usize,
         len: usize,
-        rows: &[Lanes<N>; 16],
-        staged: &mut [[f64; 16]; N],
+        rows: &[[L; N]; 16],
+        staged: &mut [[L; 16]; N],
         stream: bool,
     ) -> bool;
-
-    /// Element `i` (row-major), returning as [`Sink::put_rows`].
-    fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool;
 }
 
-/// A [`Sink`] of single precision, which also takes the f32 kernel's rows.
-pub(super) trait SinkF32: Sink {
-    /// Elements `start .. start + len` from a block's 16 rows of f32 lanes; `stream`: whole
-    /// blocks of row-major outputs with non-temporal stores where the destination allows.
-    fn put_rows_f32<const N: usize>(
-        &mut self,
-        start: usize,
-        len: usize,
-        rows: &[[f32; N]; 16],
-        staged: &mut [[f32; 16]; N],
-        stream: bool,
-    );
-}
+/// A [`Sink`] of single precision: it takes the f32 kernel's rows and the f64 kernel's (the
+/// elements the f32 kernel hands on, and materials it does not take).
+pub(super) trait SinkF32: PutRows<f64> + PutRows<f32> {}
+
+impl<W: PutRows<f64> + PutRows<f32>> SinkF32 for W {}
 
 /// A row-major output: one 4×4 result per element.
 pub(super) struct Rows<'o, O>(pub(super) &'o mut [O]);
 
-impl<O: MuellerOut> Sink for Rows<'_, O> {
-    #[inline(always)]
-    fn len(&self) -> usize {
-        self.0.len()
-    }
+impl<O: MuellerOut> PutRows<f64> for Rows<'_, O> {
     #[inline(always)]
     fn put_rows<const N: usize>(
         &mut self,
@@ -176,24 +174,37 @@ impl<O: MuellerOut> Sink for Rows<'_, O> {
     ) -> bool {
         O::write_rows(&mut self.0[start..start + len], rows, staged, stream)
     }
+}
+
+impl<O: MuellerOut> Sink for Rows<'_, O> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        self.0.len()
+    }
     #[inline(always)]
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
         O::write_block(&mut self.0[i..i + 1], std::slice::from_ref(v))
     }
+    fn poison(&mut self) {
+        for o in self.0.iter_mut() {
+            o.set(&[f64::NAN; 16]);
+        }
+    }
 }
 
-impl SinkF32 for Rows<'_, [f32; 16]> {
+impl PutRows<f32> for Rows<'_, [f32; 16]> {
     /// A whole block is transposed straight into the output (with `stream`, by non-temporal
-    /// stores where it is 16-byte aligned), a partial one through `staged`.
+    /// stores where it is 16-byte aligned), a partial one through `staged`. (f32 lanes do not
+    /// overflow f32.)
     #[inline(always)]
-    fn put_rows_f32<const N: usize>(
+    fn put_rows<const N: usize>(
         &mut self,
         start: usize,
         len: usize,
         rows: &[[f32; N]; 16],
         staged: &mut [[f32; 16]; N],
         stream: bool,
-    ) {
+    ) -> bool {
         let dst = &mut self.0[start..start + len];
         match <&mut [[f32; 16]; N]>::try_from(&mut *dst) {
             Ok(whole) if stream_to(whole, stream) => transpose_f32::<N, true>(rows, whole),
@@ -203,41 +214,26 @@ impl SinkF32 for Rows<'_, [f32; 16]> {
                 dst.copy_from_slice(&staged[..len]);
             }
         }
+        false
     }
 }
 
-/// Lanes `..len` of each row into `planes[e][start..start + len]`: a whole block as fixed-size
-/// copies (a few vector moves each; a `memcpy` call per plane would cost more than the copy).
-#[inline(always)]
-pub(super) fn copy_rows<T: Copy, const N: usize>(
-    planes: &mut [&mut [T]; 16],
-    start: usize,
-    len: usize,
-    rows: &[[T; N]; 16],
-) {
-    for (plane, row) in planes.iter_mut().zip(rows) {
-        match <&mut [T; N]>::try_from(&mut plane[start..start + len]) {
-            Ok(whole) => *whole = *row,
-            Err(_) => plane[start..start + len].copy_from_slice(&row[..len]),
-        }
-    }
-}
-
-/// An element type of planar output: f64, or f32 with each entry rounded to the nearest
-/// (`as f32`, as [`MuellerOut`] for `[f32; 16]`).
-pub(super) trait PlaneElem: Copy {
+/// An element type of planar output from lanes of `L`: f64 from f64, f32 from f32 as it is,
+/// or f32 from f64 with each entry rounded to the nearest (`as f32`, as [`MuellerOut`] for
+/// `[f32; 16]`).
+pub(super) trait Narrow<L>: Copy {
     /// `x` in this type, and whether a finite `x` became infinite.
-    fn narrow(x: f64) -> (Self, bool);
+    fn narrow(x: L) -> (Self, bool);
 }
 
-impl PlaneElem for f64 {
+impl Narrow<f64> for f64 {
     #[inline(always)]
     fn narrow(x: f64) -> (f64, bool) {
         (x, false)
     }
 }
 
-impl PlaneElem for f32 {
+impl Narrow<f64> for f32 {
     #[inline(always)]
     fn narrow(x: f64) -> (f32, bool) {
         let y = x as f32;
@@ -245,20 +241,23 @@ impl PlaneElem for f32 {
     }
 }
 
-/// Planes take a block's rows as they are: 16 contiguous runs, no transpose (and no
-/// non-temporal stores: `stream` is ignored).
-impl<T: PlaneElem> Sink for Planes<'_, T> {
+impl Narrow<f32> for f32 {
     #[inline(always)]
-    fn len(&self) -> usize {
-        Planes::len(self)
+    fn narrow(x: f32) -> (f32, bool) {
+        (x, false)
     }
+}
+
+/// Planes take a block's rows as they are, from either kernel: 16 contiguous runs, no
+/// transpose (and no non-temporal stores: `stream` is ignored).
+impl<L: Copy, T: Narrow<f64> + Narrow<L>> PutRows<L> for Planes<'_, T> {
     #[inline(always)]
     fn put_rows<const N: usize>(
         &mut self,
         start: usize,
         len: usize,
-        rows: &[Lanes<N>; 16],
-        _staged: &mut [[f64; 16]; N],
+        rows: &[[L; N]; 16],
+        _staged: &mut [[L; 16]; N],
         _stream: bool,
     ) -> bool {
         let mut overflow = false;
@@ -267,19 +266,26 @@ impl<T: PlaneElem> Sink for Planes<'_, T> {
             // A whole block as a fixed-size loop (vector moves; no `memcpy` call per plane).
             if let Ok(whole) = <&mut [T; N]>::try_from(&mut *dst) {
                 for (o, &x) in whole.iter_mut().zip(row) {
-                    let (y, over) = T::narrow(x);
+                    let (y, over) = <T as Narrow<L>>::narrow(x);
                     *o = y;
                     overflow |= over;
                 }
             } else {
                 for (o, &x) in dst.iter_mut().zip(row) {
-                    let (y, over) = T::narrow(x);
+                    let (y, over) = <T as Narrow<L>>::narrow(x);
                     *o = y;
                     overflow |= over;
                 }
             }
         }
         overflow
+    }
+}
+
+impl<T: Narrow<f64>> Sink for Planes<'_, T> {
+    #[inline(always)]
+    fn len(&self) -> usize {
+        Planes::len(self)
     }
     #[inline(always)]
     fn put_one(&mut self, i: usize, v: &[f64; 16]) -> bool {
@@ -291,19 +297,11 @@ impl<T: PlaneElem> Sink for Planes<'_, T> {
         }
         overflow
     }
-}
-
-impl SinkF32 for Planes<'_, f32> {
-    #[inline(always)]
-    fn put_rows_f32<const N: usize>(
-        &mut self,
-        start: usize,
-        len: usize,
-        rows: &[[f32; N]; 16],
-        _staged: &mut [[f32; 16]; N],
-        _stream: bool,
-    ) {
-        copy_rows(&mut self.planes, start, len, rows);
+    fn poison(&mut self) {
+        let (nan, _) = T::narrow(f64::NAN);
+        for plane in self.planes.iter_mut() {
+            plane.fill(nan);
+        }
     }
 }
 

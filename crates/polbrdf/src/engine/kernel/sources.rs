@@ -7,6 +7,7 @@ use super::{Kernel, BLOCK};
 use crate::engine::block::{self, AngleNeeds, BlockIn, Geom, GeomScratch, Lanes, Thresholds};
 use crate::engine::simd::SimdLevel;
 use crate::geometry::angles::{self, Trig};
+use crate::geometry::batch::{angles_valid, vectors_valid};
 use crate::geometry::{AngleVariables, DirectionBatch, Geometry, GeometryBatch};
 use crate::model::Evaluation;
 use crate::numeric::math::Math;
@@ -114,6 +115,88 @@ pub(super) trait Blocks {
 
     /// Element `i` by the one-geometry path.
     fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation;
+
+    /// Whether elements `start .. start + len` are valid input: always for a validated
+    /// source; a [`Checked`] one tests them (the job stops at a block that fails).
+    #[inline(always)]
+    fn valid(&self, _start: usize, _len: usize) -> bool {
+        true
+    }
+}
+
+/// A source whose elements can be validated a block at a time, as the batch's constructor
+/// validates them ([`crate::geometry::Unvalidated`]).
+pub(super) trait Validate {
+    /// Whether elements `start .. start + len` pass the batch constructor's validation.
+    fn check(&self, start: usize, len: usize) -> bool;
+}
+
+impl Validate for Computed<BatchSource<'_>> {
+    #[inline(always)]
+    fn check(&self, start: usize, len: usize) -> bool {
+        let r = start..start + len;
+        angles_valid(self.0.cols.map(|c| &c[r.clone()]))
+    }
+}
+
+impl Validate for Directions<'_> {
+    #[inline(always)]
+    fn check(&self, start: usize, len: usize) -> bool {
+        let r = start..start + len;
+        vectors_valid(&self.w_i[r.clone()]) & vectors_valid(&self.w_r[r])
+    }
+}
+
+/// A source not validated ahead: the jobs test each block as they read it ([`Blocks::valid`],
+/// the same test as the batch constructors', branch-free over the block, one branch per block)
+/// and stop at the first that fails. Otherwise `G` as it is.
+pub(super) struct Checked<G>(pub(super) G);
+
+impl<G: Blocks + Validate> Blocks for Checked<G> {
+    #[inline(always)]
+    fn geometry<'s, M: Math, const N: usize, const PAIRS: bool>(
+        &'s self,
+        start: usize,
+        len: usize,
+        needs: AngleNeeds,
+        scratch: &'s mut GeomScratch<N, M::F>,
+    ) -> &'s Geom<N, M::F>
+    where
+        M::F: Thresholds,
+    {
+        self.0.geometry::<M, N, PAIRS>(start, len, needs, scratch)
+    }
+
+    fn reference(&self, k: &Kernel<'_>, index: IndexSource<'_>, i: usize) -> Evaluation {
+        self.0.reference(k, index, i)
+    }
+
+    #[inline(always)]
+    fn valid(&self, start: usize, len: usize) -> bool {
+        self.0.check(start, len)
+    }
+}
+
+impl<G: F32Blocks + Validate> F32Blocks for Checked<G> {
+    #[inline(always)]
+    fn lane_input<const N: usize>(scratch: &GeomScratch<N, f32>, j: usize) -> [f64; 6] {
+        G::lane_input::<N>(scratch, j)
+    }
+
+    #[inline(always)]
+    fn theta_n_f64<M: Math<F = f64>>(x: [f64; 6]) -> f64 {
+        G::theta_n_f64::<M>(x)
+    }
+
+    #[inline(always)]
+    fn gathered_geometry<M: Math<F = f64>, const N: usize>(
+        &self,
+        pos: &[usize],
+        needs: AngleNeeds,
+        scratch: &mut GeomScratch<N>,
+    ) {
+        self.0.gathered_geometry::<M, N>(pos, needs, scratch);
+    }
 }
 
 /// Geometries whose geometry stages the kernel computes.
