@@ -461,9 +461,9 @@ def daytime_task(
     grid_deg: tuple[float, float] | None,
     fixed_view_deg: tuple[float, float],
     criteria: tuple[float | None, float | None, float | None, float | None],
-) -> tuple[list[str], list[str], NDArray[np.float64]]:
+) -> tuple[list[str], list[str], NDArray[np.float64], list[str]]:
     """A time-of-day sweep as ``polbrdf daytime`` runs it: the columns after ``date_time``,
-    the rows' date-times and the table; use :func:`polbrdf.daytime`."""
+    the rows' date-times, the table and the setup's warnings; use :func:`polbrdf.daytime`."""
 def detect_task(
     scene_file: str | PathLike[str] | None,
     scene_text: tuple[str, str] | None,

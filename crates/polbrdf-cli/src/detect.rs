@@ -230,7 +230,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
     );
     for (k, v) in study.ranked().into_iter().take(5).enumerate() {
         println!(
-            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}",
+            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}{}",
             k + 1,
             short(v.theta_r.to_degrees()),
             short(v.phi_r.to_degrees()),
@@ -238,7 +238,19 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
                 "" => "not searched".to_string(),
                 t if t.parse::<f64>().is_ok() => format!("{} m", short(t.parse().unwrap_or(0.0))),
                 t => t.to_string(),
+            },
+            if study.view_saturated(v) {
+                " (saturated)"
+            } else {
+                ""
             }
+        );
+    }
+    let saturated = study.saturated_views().len();
+    if saturated > 0 {
+        println!(
+            "  saturated: {saturated} of {} views (see the notes above)",
+            study.views.len()
         );
     }
 }

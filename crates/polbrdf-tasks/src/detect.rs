@@ -379,8 +379,7 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             max_range,
         });
     }
-    let warnings = crate::scene::contrast_warnings(&scene);
-    Ok(DetectStudy {
+    let mut study = DetectStudy {
         scene: Box::new(scene),
         sensor: Box::new(sensor),
         target,
@@ -390,6 +389,8 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
         grid,
         views,
         ranges_m: request.ranges_m.clone(),
-        warnings,
-    })
+        warnings: Vec::new(),
+    };
+    study.warnings = crate::detect_warnings::warnings(&study);
+    Ok(study)
 }

@@ -17,6 +17,7 @@ mod contrast_json;
 pub mod daytime;
 pub mod detect;
 pub mod detect_out;
+mod detect_warnings;
 pub mod emission;
 mod error;
 pub mod explore;

@@ -7,6 +7,7 @@ mod albedo_check;
 mod contrast;
 mod daytime;
 mod detect;
+mod detect_warnings;
 mod emission;
 mod explore;
 mod frame;
