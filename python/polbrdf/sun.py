@@ -217,6 +217,4 @@ def daytime(
         if getattr(e, "argument", None) == "from":
             e.argument = "from_"  # type: ignore[attr-defined]
         raise
-    return DaytimeStudy(
-        np.array(date_times, dtype=np.str_), tuple(columns), table, tuple(warnings)
-    )
+    return DaytimeStudy(np.array(date_times, dtype=np.str_), tuple(columns), table, tuple(warnings))
