@@ -461,9 +461,9 @@ def daytime_task(
     grid_deg: tuple[float, float] | None,
     fixed_view_deg: tuple[float, float] | None,
     criteria: tuple[float | None, float | None, float | None, float | None],
-) -> tuple[list[str], list[str], NDArray[np.float64]]:
+) -> tuple[list[str], list[str], NDArray[np.float64], list[str]]:
     """A time-of-day sweep as ``polbrdf daytime`` runs it: the columns after ``date_time``,
-    the rows' date-times and the table; use :func:`polbrdf.daytime`."""
+    the rows' date-times, the table and the setup's warnings; use :func:`polbrdf.daytime`."""
 class _DetectOptions(TypedDict):
     """The keywords of :func:`polbrdf.detect` as the task takes them (``None``: its default)."""
 

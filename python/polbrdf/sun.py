@@ -88,12 +88,14 @@ class DaytimeStudy:
       ``date_time``, every one a number (NaN where the sun is down), also reachable as
       ``study["best_delta_dolp"]``; with a sensor the detection ranges ``best_max_range_m``
       and ``fixed_max_range_m`` (m; ``inf`` beyond the search's limit, 0 when not
-      detectable) and the view of the longest range.
+      detectable) and the view of the longest range;
+    - ``warnings``: the setup's notes (the CLI prints them), each once over the sweep.
     """
 
     date_time: NDArray[np.str_]
     columns: tuple[str, ...]
     table: NDArray[np.float64] = field(repr=False)
+    warnings: tuple[str, ...] = ()
 
     def __getitem__(self, name: str) -> NDArray[np.float64]:
         return self.table[:, self.columns.index(name)]
@@ -197,7 +199,7 @@ def daytime(
     if fixed is not None and len(fixed) != 2:
         raise _invalid("fixed_view_deg", f"expected (theta, phi), got {len(fixed)} values")
     try:
-        columns, date_times, table = _polbrdf.daytime_task(
+        columns, date_times, table, warnings = _polbrdf.daytime_task(
             scene_file,
             scene_text,
             None if sensor is None else os.fspath(sensor),
@@ -219,4 +221,4 @@ def daytime(
         if getattr(e, "argument", None) == "from":
             e.argument = "from_"  # type: ignore[attr-defined]
         raise
-    return DaytimeStudy(np.array(date_times, dtype=np.str_), tuple(columns), table)
+    return DaytimeStudy(np.array(date_times, dtype=np.str_), tuple(columns), table, tuple(warnings))

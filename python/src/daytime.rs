@@ -18,8 +18,13 @@ use std::path::PathBuf;
 type Criteria = (Option<f64>, Option<f64>, Option<f64>, Option<f64>);
 
 /// What [`daytime_task`] returns: the columns after `date_time`, the `date_time` of each row
-/// (RFC 3339 with the offset) and the table (one row per time).
-type DaytimeOut<'py> = (Vec<&'static str>, Vec<String>, Bound<'py, PyArray2<f64>>);
+/// (RFC 3339 with the offset), the table (one row per time) and the setup's warnings.
+type DaytimeOut<'py> = (
+    Vec<&'static str>,
+    Vec<String>,
+    Bound<'py, PyArray2<f64>>,
+    Vec<String>,
+);
 
 /// The range of local times `(from, to, step_min)`, each `None` taking the task's default.
 type TimeRange = (Option<String>, Option<String>, Option<f64>);
@@ -79,5 +84,6 @@ pub(crate) fn daytime_task<'py>(
     let table = Array2::from_shape_vec((rows.len() / width.max(1), width), rows)
         .expect("every row has one value per column")
         .into_pyarray(py);
-    Ok((columns, study.date_times(), table))
+    let warnings = study.warnings.iter().map(ToString::to_string).collect();
+    Ok((columns, study.date_times(), table, warnings))
 }

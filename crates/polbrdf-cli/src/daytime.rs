@@ -227,6 +227,9 @@ fn figure(study: &DaytimeStudy) -> Figure {
 /// Runs `polbrdf daytime`.
 pub fn run(args: &Args) -> Result<(), CliError> {
     let study = daytime(&request(args)?)?;
+    for w in &study.warnings {
+        crate::note!("polbrdf daytime: note: {w}");
+    }
     let mut files: Vec<OutputFile> = vec![("daytime.csv".into(), study.csv())];
     files.extend(
         render_files(&[("daytime", &figure(&study) as &dyn Render)])

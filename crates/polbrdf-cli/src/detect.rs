@@ -237,7 +237,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
     );
     for (k, v) in study.ranked().into_iter().take(5).enumerate() {
         println!(
-            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}{}",
+            "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}{}{}",
             k + 1,
             short(v.theta_r.to_degrees()),
             short(v.phi_r.to_degrees()),
@@ -259,7 +259,19 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
                 ),
                 Some(RangeUncertainty::Undefined) => " (no interval: see best.json)".into(),
                 None => String::new(),
+            },
+            if study.view_saturated(v) {
+                " (saturated)"
+            } else {
+                ""
             }
+        );
+    }
+    let saturated = study.saturated_views().len();
+    if saturated > 0 {
+        println!(
+            "  saturated: {saturated} of {} views (see the notes above)",
+            study.views.len()
         );
     }
 }

@@ -12,6 +12,7 @@ use crate::contrast::{contrast, ContrastRequest, RankRequest, SourceRequest};
 use crate::detect::{detect, DetectRequest, SceneSource, SensorSource, Views};
 use crate::detect_out::max_range_value;
 use crate::error::{TaskError, TaskResult};
+use crate::scene::Warning;
 use crate::sun::field_error;
 use polbrdf::analysis::contrast::ContrastSample;
 use polbrdf::analysis::detection::MaxRange;
@@ -272,6 +273,12 @@ pub struct DaytimeValue {
     pub fixed: ContrastSample,
     /// With a sensor: see [`DaytimeDetection`].
     pub detection: Option<DaytimeDetection>,
+    /// With a sensor: the views of the grid where the camera saturates
+    /// ([`crate::detect::DetectStudy::view_saturated`]).
+    pub saturated_views: usize,
+    /// The setup warnings of the contrast and detection studies at this time, without
+    /// saturation.
+    pub warnings: Vec<Warning>,
 }
 
 /// The result of [`daytime`].
@@ -283,6 +290,9 @@ pub struct DaytimeStudy {
     pub request: DaytimeRequest,
     /// One row per time.
     pub rows: Vec<SweepRow<DaytimeValue>>,
+    /// The setup warnings ([`DaytimeValue::warnings`] of every time, once each, and the times
+    /// at which the camera saturates).
+    pub warnings: Vec<Warning>,
 }
 
 /// The contrast and detection of one scene.
@@ -300,6 +310,8 @@ fn evaluate(request: &DaytimeRequest, scene: &Scene) -> TaskResult<DaytimeValue>
         .top
         .first()
         .expect("a ranking lists at least one view");
+    let mut warnings = study.warnings;
+    let mut saturated_views = 0;
     let detection = match &request.detect {
         None => None,
         Some(d) => {
@@ -315,6 +327,8 @@ fn evaluate(request: &DaytimeRequest, scene: &Scene) -> TaskResult<DaytimeValue>
                 })
             };
             let grid = run(Views::Grid(request.grid_deg))?;
+            warnings.extend(crate::detect_warnings::setup_warnings(&grid));
+            saturated_views = grid.saturated_views().len();
             let top = grid.ranked()[0];
             let at_fixed = run(Views::List(vec![request.fixed_view_deg]))?;
             Some((
@@ -328,7 +342,47 @@ fn evaluate(request: &DaytimeRequest, scene: &Scene) -> TaskResult<DaytimeValue>
         best,
         fixed,
         detection,
+        saturated_views,
+        warnings,
     })
+}
+
+/// The warnings of a sweep: each setup warning of its times once, in order, and one line for
+/// the times at which the camera saturates.
+fn sweep_warnings(request: &DaytimeRequest, rows: &[SweepRow<DaytimeValue>]) -> Vec<Warning> {
+    let mut out: Vec<Warning> = Vec::new();
+    for w in rows
+        .iter()
+        .filter_map(|r| r.value.as_ref())
+        .flat_map(|v| &v.warnings)
+    {
+        if !out.contains(w) {
+            out.push(w.clone());
+        }
+    }
+    let saturated: Vec<&SweepRow<DaytimeValue>> = rows
+        .iter()
+        .filter(|r| r.value.as_ref().is_some_and(|v| v.saturated_views > 0))
+        .collect();
+    if let (Some(first), Some(d)) = (saturated.first(), &request.detect) {
+        let sensor = match &d.template.sensor {
+            SensorSource::File(p) => p.display().to_string(),
+            SensorSource::Loaded(s) => s.path.display().to_string(),
+        };
+        out.push(Warning {
+            message: format!(
+                "{sensor}: a channel saturates (beyond full_well_e) at some views at {} of {} \
+                 times (the first at {}, {} views): the detection ranges there assume a linear \
+                 response the camera does not have; a shorter integration_time_ms or a larger \
+                 f_number avoids it",
+                saturated.len(),
+                rows.len(),
+                polbrdf_io::date_time::format_date_time(&first.at.time),
+                first.value.as_ref().map_or(0, |v| v.saturated_views),
+            ),
+        });
+    }
+    out
 }
 
 /// Runs a time-of-day sweep. The request is checked (scene, date, times, fixed view, and the
@@ -366,10 +420,12 @@ pub fn daytime(request: &DaytimeRequest) -> TaskResult<DaytimeStudy> {
         ..request.clone()
     };
     let rows = sweep(&scene, &times, |s| evaluate(&request, s))?;
+    let warnings = sweep_warnings(&request, &rows);
     Ok(DaytimeStudy {
         scene: Box::new(scene),
         request,
         rows,
+        warnings,
     })
 }
 

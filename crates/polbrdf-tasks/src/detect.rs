@@ -461,8 +461,7 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             views[i].range_uncertainty = propagation.of_view(&views[i])?;
         }
     }
-    let warnings = crate::scene::contrast_warnings(&scene);
-    Ok(DetectStudy {
+    let mut study = DetectStudy {
         scene: Box::new(scene),
         sensor: Box::new(sensor),
         target,
@@ -472,10 +471,12 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
         grid,
         views,
         ranges_m: request.ranges_m.clone(),
-        warnings,
+        warnings: Vec::new(),
         fits,
         uncertainty_views: request.uncertainty_views,
-    })
+    };
+    study.warnings = crate::detect_warnings::warnings(&study);
+    Ok(study)
 }
 
 /// The request's fits, read and checked against the materials (before anything is computed).

@@ -196,13 +196,16 @@ impl DetectStudy {
     /// `best.json`: the setup, and every view ranked by detection range with `max_range_m`
     /// (a number, `"beyond"` or `"not detectable"`) and the detecting feature.
     pub fn best_json(&self) -> Value {
-        let entry = |v: &ViewResult| {
+        let mut saturated_views = 0;
+        let mut entry = |v: &ViewResult| {
             let (range, feature) = match v.max_range {
                 Some(MaxRange::At { range_m, feature }) => (num(range_m), json!(feature.as_str())),
                 other => (json!(max_range_text(other)), Value::Null),
             };
+            let saturated = self.view_saturated(v);
+            saturated_views += usize::from(saturated);
             let mut e = json!({"theta_r_deg": num(deg(v.theta_r)), "phi_r_deg": num(deg(v.phi_r)),
-                   "max_range_m": range, "feature": feature});
+                   "max_range_m": range, "feature": feature, "saturated": saturated});
             if self.fits.iter().any(Option::is_some) {
                 let [sigma, lo, hi] = uncertainty_values(v.range_uncertainty);
                 e["max_range_sigma_m"] = num(sigma);
@@ -220,7 +223,7 @@ impl DetectStudy {
             }
             e
         };
-        let ranked: Vec<Value> = self.ranked().into_iter().map(entry).collect();
+        let ranked: Vec<Value> = self.ranked().into_iter().map(&mut entry).collect();
         let c = &self.detector.criteria;
         let noise = match self.detector.sensor.noise {
             NoiseModel::PhotonCounting(p) => json!({"model": "photon-counting",
@@ -246,6 +249,8 @@ impl DetectStudy {
                          "features": c.features.iter().map(|f| f.as_str()).collect::<Vec<_>>()},
             "ranges_m": self.ranges_m.iter().map(|r| num(*r)).collect::<Vec<_>>(),
             "uncertainty": self.uncertainty_json(),
+            "saturated_views": saturated_views,
+            "warnings": self.warnings.iter().map(ToString::to_string).collect::<Vec<_>>(),
         })
     }
 

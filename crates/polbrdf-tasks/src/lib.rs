@@ -18,6 +18,7 @@ pub mod daytime;
 pub mod detect;
 pub mod detect_out;
 pub mod detect_unc;
+mod detect_warnings;
 pub mod emission;
 mod error;
 pub mod explore;

@@ -79,13 +79,19 @@ fn longest_wavelength(spectrum: &Spectrum) -> f64 {
 /// 1e-3 of its peak; in the visible it is below 1e-20), and a `[surface]` table, which
 /// contrast does not use.
 pub fn contrast_warnings(scene: &Scene) -> Vec<Warning> {
+    contrast_warnings_over(scene, &scene.spectrum)
+}
+
+/// [`contrast_warnings`] for a scene observed over `spectrum` rather than its own (a detection
+/// observes over the sensor's band): whether emission matters is judged over `spectrum`.
+pub fn contrast_warnings_over(scene: &Scene, spectrum: &Spectrum) -> Vec<Warning> {
     let path = scene.path.display();
     let mut warnings = Vec::new();
     for (table, t) in [
         ("target", scene.target.temperature_k),
         ("background", scene.background.temperature_k),
     ] {
-        if t.is_none() && longest_wavelength(&scene.spectrum) >= 3.0 {
+        if t.is_none() && longest_wavelength(spectrum) >= 3.0 {
             warnings.push(Warning {
                 message: format!(
                     "{path}: [{table}] has no temperature_k, so the {table} emits nothing (it \
@@ -103,6 +109,17 @@ pub fn contrast_warnings(scene: &Scene) -> Vec<Warning> {
         });
     }
     warnings
+}
+
+/// The unit warnings of a material (`polbrdf_io::material_warnings`: an angle small enough to
+/// be radians written in degrees), as setup warnings naming what the request or the scene gave.
+pub fn material_warnings(material: &NamedMaterial) -> Vec<Warning> {
+    polbrdf_io::material_warnings(&material.spec, &material.source)
+        .into_iter()
+        .map(|w| Warning {
+            message: w.to_string(),
+        })
+        .collect()
 }
 
 /// A scene given to the radiance of one surface must describe that surface (`[surface]`):

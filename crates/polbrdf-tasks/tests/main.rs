@@ -8,6 +8,7 @@ mod contrast;
 mod daytime;
 mod detect;
 mod detect_uncertainty;
+mod detect_warnings;
 mod emission;
 mod explore;
 mod frame;

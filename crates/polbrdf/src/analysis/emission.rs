@@ -234,9 +234,10 @@ fn weighted_sums(
         .par_chunks(CHUNK)
         .enumerate()
         .map(|(c, chunk)| {
-            let mut buf = [[0.0; 16]; CHUNK];
-            let out = &mut buf[..chunk.len()];
-            kernel.mueller_into(batch, c * CHUNK, out);
+            // Only as many entries as the chunk has nodes (a stack buffer of CHUNK entries
+            // cost more to zero than a short direction's kernel calls).
+            let mut out = vec![[0.0; 16]; chunk.len()];
+            kernel.mueller_into(batch, c * CHUNK, &mut out);
             let mut s = [0.0; 4];
             for (f, n) in out.iter().zip(chunk) {
                 let v = pick(f);

@@ -423,11 +423,23 @@ impl Observer {
         };
         if !missing.is_empty() {
             use rayon::prelude::*;
-            // per node, per missing zenith
-            let per_node: Vec<Vec<ZenithTerms>> = self
+            // The terms depend on the material at a node only: spectral nodes with the same
+            // material (every node of a constant-index material) share one computation.
+            let mut distinct: Vec<&Material> = Vec::new();
+            let which: Vec<usize> = self
                 .nodes
-                .par_iter()
+                .iter()
                 .map(|(_, _, m)| {
+                    distinct.iter().position(|d| *d == m).unwrap_or_else(|| {
+                        distinct.push(m);
+                        distinct.len() - 1
+                    })
+                })
+                .collect();
+            // per distinct material, per missing zenith
+            let per_material: Vec<Vec<ZenithTerms>> = distinct
+                .par_iter()
+                .map(|m| {
                     let eps = emissivity_vectors(m, &missing)
                         .expect("validated material and clamped angles");
                     let profile: Vec<Stokes> = match &self.profile_sky {
@@ -458,7 +470,7 @@ impl Observer {
                 .collect();
             let mut cache = self.cache.lock().expect("no panic while holding the cache");
             for (j, t) in missing.iter().enumerate() {
-                let row: Arc<[ZenithTerms]> = per_node.iter().map(|v| v[j]).collect();
+                let row: Arc<[ZenithTerms]> = which.iter().map(|&d| per_material[d][j]).collect();
                 cache.insert(t.to_bits(), row);
             }
         }
