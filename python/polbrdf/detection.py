@@ -13,7 +13,7 @@ import json
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, get_args
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,6 +28,9 @@ __all__ = ["DetectFrame", "DetectStudy", "Feature", "detect", "detect_frame"]
 
 #: The features a detector may use (``--features``): intensity, DoLP, or both combined.
 Feature: TypeAlias = Literal["s0", "dolp", "s0+dolp"]
+#: Every feature (the default): the Literal's members, which a test holds equal to the
+#: extension's ``vocabulary()["feature"]`` (the core's ``Feature::ALL``).
+_ALL_FEATURES: tuple[Feature, ...] = get_args(Feature)
 
 PathName: TypeAlias = "str | os.PathLike[str]"
 _F64 = NDArray[np.float64]
@@ -261,7 +264,7 @@ def detect(
     area_m2: float = 1.0,
     pfa: float = 1e-6,
     pd: float = 0.9,
-    features: Sequence[Feature] = ("s0", "dolp", "s0+dolp"),
+    features: Sequence[Feature] = _ALL_FEATURES,
     sun_deg: Sequence[float] | None = None,
 ) -> DetectStudy:
     """Will the sensor see the target on its background, from which views, by which feature
@@ -327,7 +330,7 @@ def detect_frame(
     area_m2: float = 1.0,
     pfa: float = 1e-6,
     pd: float = 0.9,
-    features: Sequence[Feature] = ("s0", "dolp", "s0+dolp"),
+    features: Sequence[Feature] = _ALL_FEATURES,
     sun_deg: Sequence[float] | None = None,
 ) -> DetectFrame:
     """The simulated camera frame of a detection study: ``polbrdf detect --frame --seed SEED``

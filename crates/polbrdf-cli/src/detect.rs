@@ -2,6 +2,7 @@
 //! feature and how far (docs/detection.md) — `detect.csv`, `best.json` and polar maps of the
 //! detection range and of P_d, all computed by the task layer (`polbrdf_tasks::detect`).
 
+use crate::closed_set;
 use crate::error::CliError;
 use crate::figures::{polar_grid, render_all, short, single};
 use crate::output::{write_all, OutputFile};
@@ -88,14 +89,15 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub pd: f64,
-    /// Features the detector may use (s0, dolp, s0+dolp).
+    /// Features the detector may use, comma-separated.
     #[arg(
         long,
         value_name = "LIST",
         value_delimiter = ',',
-        default_value = "s0,dolp,s0+dolp"
+        default_values = closed_set::names(&Feature::ALL, Feature::as_str),
+        value_parser = closed_set::parser(&Feature::ALL, Feature::as_str)
     )]
-    pub features: Vec<String>,
+    pub features: Vec<Feature>,
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
     #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
     pub sun_deg: Option<String>,
@@ -151,17 +153,7 @@ impl Args {
                     .collect(),
             )
         };
-        let features = self
-            .features
-            .iter()
-            .map(|f| {
-                Feature::parse(f).ok_or_else(|| {
-                    CliError::Invalid(format!(
-                        "--features: unknown feature {f:?} (known: s0, dolp, s0+dolp)"
-                    ))
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let features = self.features.clone();
         crate::limits::at_most("--ranges-m", self.ranges_m.len(), 1000)?;
         Ok(DetectRequest {
             scene: SceneSource::File(self.scene.clone()),
