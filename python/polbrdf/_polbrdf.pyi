@@ -25,7 +25,7 @@ _LutQuantity: TypeAlias = Literal["mueller", "brdf", "dolp", "aolp"]
 _Feature: TypeAlias = Literal["s0", "dolp", "s0+dolp"]
 _VocabularySet: TypeAlias = Literal[
     "form", "azimuth_term", "precision", "layout", "sky", "quantity", "parameter", "scene_key",
-    "rank_by", "lut_quantity", "feature",
+    "rank_by", "lut_quantity", "feature", "mueller_column",
 ]
 
 DEFAULT_DOP_MAX: float

@@ -37,8 +37,11 @@ from polbrdf import FitResult, Material, _polbrdf
 
 __all__ = ["CONTRAST", "QUANTITIES", "lut", "open_lut"]
 
-#: Per-material quantities of a table (unpolarized illumination for the scalars).
-QUANTITIES = ("mueller", "brdf", "dolp", "aolp")
+#: Per-material quantities of a table (unpolarized illumination for the scalars): the
+#: extension's ``vocabulary()["lut_quantity"]``, as ``polbrdf lut`` spells them.
+QUANTITIES = tuple(_polbrdf.vocabulary()["lut_quantity"])
+#: The Mueller columns ``m00 … m33`` of a table, row-major (the core's one list).
+_MUELLER_COLUMNS = _polbrdf.vocabulary()["mueller_column"]
 #: Target-against-background quantities (docs/model.md §11), from the brdf and dolp variables.
 CONTRAST = ("delta_dolp", "intensity_ratio")
 
@@ -557,9 +560,7 @@ def _read_sidecar(folder: Path, meta_path: Path) -> tuple:
     if not (isinstance(quantities, list) and quantities and set(quantities) <= set(QUANTITIES)):
         raise _sidecar_bad(meta_path, "quantities", f"must be a list of {list(QUANTITIES)}")
     for q in quantities:
-        need = [f"m{i}{j}" for i in range(4) for j in range(4)] if q == "mueller" else [
-            "aolp_deg" if q == "aolp" else q
-        ]
+        need = _MUELLER_COLUMNS if q == "mueller" else ["aolp_deg" if q == "aolp" else q]
         at = columns.index(need[0]) if need[0] in columns else -1
         if at < 0 or columns[at : at + len(need)] != need:
             raise _sidecar_bad(meta_path, "columns", f"lack the column(s) of quantity {q!r}")
@@ -604,7 +605,7 @@ def open_lut(path: str | os.PathLike) -> xr.Dataset:
     data_vars = {}
     for q in quantities:
         if q == "mueller":
-            at = columns.index("m00")
+            at = columns.index(_MUELLER_COLUMNS[0])
             values, var_dims = (
                 raw[..., at : at + 16].reshape(shape + (4, 4)),
                 _DIMS + ("row", "col"),

@@ -51,7 +51,10 @@ fn features_of(py: Python<'_>, names: &[String]) -> PyResult<Vec<Feature>> {
                 invalid(
                     py,
                     "features",
-                    format!("unknown feature {f:?} (known: s0, dolp, s0+dolp)"),
+                    format!(
+                        "unknown feature {f:?} (known: {})",
+                        polbrdf::names::quoted(&Feature::ALL, Feature::as_str)
+                    ),
                 )
             })
         })

@@ -333,10 +333,10 @@ pub(crate) fn mueller_flat<'py>(
     let wl = wavelength_slice(&wavelength_um, n)?;
     let m = &material.inner;
     match precision {
-        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", planar, |rows| {
+        Precision::F64 => mueller_array::<f64>(py, out, n, Precision::F64.name(), planar, |rows| {
             mueller_rows(m, input, wl, degrees, rows, &StoreF64::new(m, n))
         }),
-        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
+        Precision::F32 => mueller_array::<f32>(py, out, n, Precision::F32.name(), planar, |rows| {
             mueller_rows(m, input, wl, degrees, rows, &StoreF32::new(m, n))
         }),
     }
@@ -380,10 +380,10 @@ pub(crate) fn mueller_directions_flat<'py>(
     let wl = wavelength_slice(&wavelength_um, n)?;
     let m = &material.inner;
     match precision {
-        Precision::F64 => mueller_array::<f64>(py, out, n, "float64", planar, |rows| {
+        Precision::F64 => mueller_array::<f64>(py, out, n, Precision::F64.name(), planar, |rows| {
             direction_rows(m, [wi, wr], wl, rows, &StoreF64::new(m, n))
         }),
-        Precision::F32 => mueller_array::<f32>(py, out, n, "float32", planar, |rows| {
+        Precision::F32 => mueller_array::<f32>(py, out, n, Precision::F32.name(), planar, |rows| {
             direction_rows(m, [wi, wr], wl, rows, &StoreF32::new(m, n))
         }),
     }

@@ -19,7 +19,8 @@ pub(crate) const LAYOUTS: [&str; 2] = ["interleaved", "planar"];
 /// (material keys), `precision`, `layout`, `sky` (the scene files' sky models), `quantity`
 /// (what a fit takes as measured), `parameter` (what a fit frees), `scene_key` (every key and
 /// table of a scene file, dotted), `rank_by` (the scores of a contrast's ranking),
-/// `lut_quantity` (the quantities of a lookup table), `feature` (what a detector may use).
+/// `lut_quantity` (the quantities of a lookup table), `feature` (what a detector may use),
+/// `mueller_column` (the names `m00 … m33` of the Mueller entries in every file and table).
 #[pyfunction]
 pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
     let names = |it: &mut dyn Iterator<Item = &'static str>| it.map(String::from).collect();
@@ -52,6 +53,10 @@ pub(crate) fn vocabulary() -> BTreeMap<&'static str, Vec<String>> {
         (
             "lut_quantity",
             names(&mut polbrdf_io::lut::Quantity::ALL.iter().map(|(n, _)| *n)),
+        ),
+        (
+            "mueller_column",
+            names(&mut polbrdf::Mueller::COLUMNS.into_iter()),
         ),
     ])
 }

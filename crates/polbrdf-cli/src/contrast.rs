@@ -2,6 +2,7 @@
 //! DoLP, ΔDoLP, intensity ratio, AoLP difference and polarization contrast, `contrast.csv`, and
 //! the best viewing directions in `best.json`.
 
+use crate::closed_set;
 use crate::error::CliError;
 use crate::figures::{
     angle_scale, dolp_scale, input_stokes, light_marks, polar_grid, render_all, short, single,
@@ -42,9 +43,9 @@ pub struct Args {
     pub view: ViewArgs,
     /// What the best directions are ranked by: |ΔDoLP|, or the polarization contrast
     /// |ΔS_lin|/mean(S0), which also weighs intensity (docs/model.md §11).
-    #[arg(long, value_name = "SCORE", default_value = "delta-dolp",
-          value_parser = ["delta-dolp", "polarization-contrast"])]
-    pub rank_by: String,
+    #[arg(long, value_name = "SCORE", default_value = Ranking::DeltaDolp.as_str(),
+          value_parser = closed_set::parser(&Ranking::ALL, |r| r.as_str()))]
+    pub rank_by: Ranking,
     /// Number of best directions listed in best.json.
     #[arg(long, value_name = "N", default_value_t = 10)]
     pub top: usize,
@@ -76,7 +77,7 @@ pub struct Args {
 impl Args {
     /// The request: options parsed (and limited), the rest validated by the task.
     fn request(&self) -> Result<ContrastRequest, CliError> {
-        let by: Ranking = self.rank_by.parse().map_err(CliError::Invalid)?;
+        let by = self.rank_by;
         let source = match &self.scene {
             Some(path) => SourceRequest::Scene(path.clone()),
             None => SourceRequest::Collimated {

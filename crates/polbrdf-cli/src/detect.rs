@@ -2,6 +2,7 @@
 //! feature and how far (docs/detection.md) — `detect.csv`, `best.json` and polar maps of the
 //! detection range and of P_d, all computed by the task layer (`polbrdf_tasks::detect`).
 
+use crate::closed_set;
 use crate::error::CliError;
 use crate::figures::{polar_grid, render_all, short, single};
 use crate::output::{write_all, OutputFile};
@@ -91,9 +92,14 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub pd: f64,
-    /// Features the detector may use (s0, dolp, s0+dolp; default all three).
-    #[arg(long, value_name = "LIST", value_delimiter = ',')]
-    pub features: Vec<String>,
+    /// Features the detector may use, comma-separated (default: all of them).
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        value_parser = closed_set::parser(&Feature::ALL, Feature::as_str)
+    )]
+    pub features: Vec<Feature>,
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
     #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
     pub sun_deg: Option<String>,
@@ -154,17 +160,7 @@ impl Args {
             r.views = Views::listed(&self.theta_deg, &self.phi_deg);
         }
         if !self.features.is_empty() {
-            r.features = self
-                .features
-                .iter()
-                .map(|f| {
-                    Feature::parse(f).ok_or_else(|| {
-                        CliError::Invalid(format!(
-                            "--features: unknown feature {f:?} (known: s0, dolp, s0+dolp)"
-                        ))
-                    })
-                })
-                .collect::<Result<Vec<_>, _>>()?;
+            r.features.clone_from(&self.features);
         }
         crate::limits::at_most("--ranges-m", self.ranges_m.len(), 1000)?;
         if !self.ranges_m.is_empty() {

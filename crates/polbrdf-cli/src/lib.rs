@@ -12,6 +12,7 @@ use std::path::PathBuf;
 mod albedo;
 mod bench;
 mod check;
+mod closed_set;
 mod completions;
 mod contrast;
 mod daytime;

@@ -50,17 +50,7 @@ impl Observable {
             "dolp" => Some(Observable::Dolp),
             "brdf_s" => Some(Observable::BrdfS),
             "brdf_p" => Some(Observable::BrdfP),
-            _ => {
-                let d: Vec<usize> = name
-                    .strip_prefix('m')?
-                    .chars()
-                    .map(|c| c.to_digit(10).map(|d| d as usize))
-                    .collect::<Option<_>>()?;
-                match d[..] {
-                    [i, j] if i < 4 && j < 4 => Some(Observable::Mueller(i, j)),
-                    _ => None,
-                }
-            }
+            _ => Mueller::entry_of(name).map(|(i, j)| Observable::Mueller(i, j)),
         }
     }
 
@@ -71,7 +61,9 @@ impl Observable {
             Observable::Dolp => "dolp".into(),
             Observable::BrdfS => "brdf_s".into(),
             Observable::BrdfP => "brdf_p".into(),
-            Observable::Mueller(i, j) => format!("m{i}{j}"),
+            // An entry outside the matrix (no quantity of a file) is named as it is.
+            Observable::Mueller(i, j) if *i < 4 && *j < 4 => Mueller::COLUMNS[4 * i + j].into(),
+            Observable::Mueller(i, j) => format!("entry ({i}, {j}) outside the 4×4 matrix"),
         }
     }
 

@@ -390,3 +390,17 @@ fn the_engine_and_the_one_geometry_path_fit_the_same() {
         );
     }
 }
+
+#[test]
+fn quantity_names_round_trip_and_use_the_core_s_mueller_columns() {
+    let all = Observable::all();
+    let names: Vec<String> = all.iter().map(Observable::name).collect();
+    assert_eq!(names[..4], ["brdf", "dolp", "brdf_s", "brdf_p"]);
+    assert_eq!(names[4..], polbrdf::Mueller::COLUMNS.map(String::from));
+    for (o, n) in all.iter().zip(&names) {
+        assert_eq!(Observable::parse(n), Some(*o), "{n}");
+    }
+    for bad in ["m44", "m4", "m000", "M00", "aolp", ""] {
+        assert_eq!(Observable::parse(bad), None, "{bad}");
+    }
+}

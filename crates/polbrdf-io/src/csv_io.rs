@@ -18,7 +18,7 @@ pub const DIRECTION_COLUMNS: [&str; 6] = ["w_i_x", "w_i_y", "w_i_z", "w_r_x", "w
 /// The columns `polbrdf eval` appends: `brdf, dolp, aolp_deg, m00 … m33`.
 pub fn result_columns() -> Vec<String> {
     let mut cols = vec!["brdf".to_string(), "dolp".into(), "aolp_deg".into()];
-    cols.extend((0..16).map(|k| format!("m{}{}", k / 4, k % 4)));
+    cols.extend(polbrdf::Mueller::COLUMNS.map(String::from));
     cols
 }
 
@@ -158,22 +158,6 @@ pub(crate) fn lone_cr_to_lf(text: &str) -> std::borrow::Cow<'_, str> {
 /// characters.
 pub(crate) fn short_message(m: &str) -> String {
     cut(m, MAX_LIST_IN_MESSAGE)
-}
-
-/// The message of a TOML syntax error in `text`, bounded ([`short_message`]); the toml crate
-/// says nothing of a control character (in a comment, or anywhere outside a string), so then the
-/// message names the character.
-pub(crate) fn toml_message(e: &toml::de::Error, text: &str) -> String {
-    let m = e.message().trim();
-    if m.is_empty() {
-        let c = e.span().and_then(|s| text.get(s.start..)?.chars().next());
-        format!(
-            "invalid character {:?}: TOML allows no control characters, not even in comments",
-            c.unwrap_or('?')
-        )
-    } else {
-        short_message(m)
-    }
 }
 
 fn cut(s: &str, max: usize) -> String {

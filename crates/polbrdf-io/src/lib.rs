@@ -23,6 +23,7 @@ pub mod sensor;
 pub mod stream;
 pub mod table;
 pub mod tensorfile;
+pub mod toml_doc;
 pub mod units;
 pub mod write;
 

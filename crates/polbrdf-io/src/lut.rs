@@ -16,13 +16,13 @@
 //! `j = 0 … count − 2` and exactly `stop` last, as `numpy.linspace` computes it; `count = 1`
 //! needs `start = stop`.
 
-use crate::csv_io::{line_of, read_text};
+use crate::csv_io::read_text;
 use crate::error::{Error, Result};
 use crate::material::load_material;
+use crate::toml_doc::{key, Format, Key, Kind, TomlDoc};
 use polbrdf::MaterialSpec;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use toml::{Spanned, Value};
+use toml::Value;
 
 /// Most values along one axis of a table: every coordinate is written into the table's
 /// `attrs.json` (about 25 bytes a value), so 10⁵ keeps it under ~13 MB (10⁷ cost 1 GB).
@@ -98,62 +98,46 @@ impl LutConfig {
     }
 }
 
-/// The keys of the file and what each holds (for messages).
-const KEYS: &[(&str, &str)] = &[
-    (
+/// The keys of the file and what each holds (for messages); their values are checked here.
+const KEYS: &[Key] = &[
+    key(
         "materials",
+        Kind::Any,
         "an array of material files or preset names (strings)",
     ),
-    (
+    key(
         "wavelength_um",
+        Kind::Any,
         "wavelengths in µm: an array of numbers or { start, stop, count }",
     ),
-    (
+    key(
         "theta_i_deg",
+        Kind::Any,
         "zenith angles in degrees: an array of numbers or { start, stop, count }",
     ),
-    (
+    key(
         "theta_r_deg",
+        Kind::Any,
         "zenith angles in degrees: an array of numbers or { start, stop, count }",
     ),
-    (
+    key(
         "dphi_deg",
+        Kind::Any,
         "azimuth differences in degrees: an array of numbers or { start, stop, count }",
     ),
-    (
-        "quantities",
-        "an array of quantity names (mueller, brdf, dolp, aolp)",
-    ),
+    key("quantities", Kind::Any, "an array of quantity names"),
 ];
 
-struct Doc<'a> {
-    path: &'a Path,
-    folder: Option<&'a Path>,
-    /// Every key: its line and value.
-    found: BTreeMap<String, (usize, Value)>,
-}
+/// The configuration's keys, read by [`TomlDoc`].
+struct Doc<'a>(TomlDoc<'a>);
 
 impl Doc<'_> {
     fn err(&self, key: &str, message: impl Into<String>) -> Error {
-        Error::Field {
-            path: self.path.to_path_buf(),
-            line: self.found.get(key).map_or(1, |(l, _)| *l),
-            field: key.to_string(),
-            message: message.into(),
-        }
+        self.0.error(key, message)
     }
 
     fn required(&self, key: &str) -> Result<&Value> {
-        self.found
-            .get(key)
-            .map(|(_, v)| v)
-            .ok_or_else(|| Error::File {
-                path: self.path.to_path_buf(),
-                message: format!(
-                    "missing key `{key}` ({})",
-                    KEYS.iter().find(|(k, _)| *k == key).map_or("", |(_, w)| w)
-                ),
-            })
+        self.0.value(key).ok_or_else(|| self.0.missing(key))
     }
 
     fn number(&self, key: &str, v: &Value, what: &str) -> Result<f64> {
@@ -293,10 +277,7 @@ impl Doc<'_> {
                 "an empty string: expected a material file or a preset name",
             ));
         }
-        let file = match self.folder {
-            Some(dir) if Path::new(arg).is_relative() => dir.join(arg),
-            _ => PathBuf::from(arg),
-        };
+        let file = self.0.resolve(arg);
         let spec = match file.to_str() {
             Some(f) if file.is_file() => load_material(f),
             _ => load_material(arg),
@@ -320,32 +301,15 @@ impl Doc<'_> {
 /// loaded (its own error inside) or two materials of the same name; [`Error::File`] for a
 /// missing key or a table beyond [`MAX_ROWS`] rows.
 pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let top: BTreeMap<Spanned<String>, Spanned<Value>> =
-        toml::from_str(text).map_err(|e| Error::Syntax {
-            path: path.to_path_buf(),
-            line: e.span().map_or(1, |s| line_of(text, s.start)),
-            message: crate::csv_io::toml_message(&e, text),
-        })?;
-    let mut doc = Doc {
+    let doc = Doc(TomlDoc::parse(
+        text,
         path,
-        folder: path.parent().filter(|p| !p.as_os_str().is_empty()),
-        found: BTreeMap::new(),
-    };
-    for (k, v) in top {
-        let line = line_of(text, k.span().start);
-        let name = k.into_inner();
-        if !KEYS.iter().any(|(key, _)| *key == name) {
-            let known: Vec<String> = KEYS.iter().map(|(k, _)| format!("`{k}`")).collect();
-            return Err(Error::Field {
-                path: path.to_path_buf(),
-                line,
-                field: name,
-                message: format!("unknown key (known: {})", known.join(", ")),
-            });
-        }
-        doc.found.insert(name, (line, v.into_inner()));
-    }
+        Format {
+            noun: "lookup-table configuration",
+            example: "`dphi_deg = [0, 90]`",
+            keys: KEYS,
+        },
+    )?);
     let names = doc.strings("materials")?;
     if names.is_empty() || names.len() > MAX_MATERIALS {
         return Err(doc.err(
@@ -381,7 +345,7 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
                  angle has no digit left)",
             ),
         )?,
-        quantities: match doc.found.contains_key("quantities") {
+        quantities: match doc.0.has("quantities") {
             false => vec![Quantity::Mueller, Quantity::Brdf, Quantity::Dolp],
             true => {
                 let mut q = Vec::new();
@@ -395,7 +359,8 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
                             return Err(doc.err(
                                 "quantities",
                                 format!(
-                                    "unknown quantity `{s}` (known: mueller, brdf, dolp, aolp)"
+                                    "unknown quantity `{s}` (known: {})",
+                                    Quantity::ALL.map(|(n, _)| n).join(", ")
                                 ),
                             ))
                         }
@@ -525,7 +490,7 @@ mod tests {
             }
         }
         let e = parse("materials = [\"paint\"]\n").unwrap_err().to_string();
-        assert!(e.contains("missing key `wavelength_um`"), "{e}");
+        assert!(e.contains("missing required key `wavelength_um`"), "{e}");
         let e = parse(
             "materials = [\"paint\"]\nwavelength_um = { start = 0.5, stop = 1, count = 100000 }\n\
              theta_i_deg = { start = 0, stop = 80, count = 100000 }\ntheta_r_deg = [0, 30]\n\

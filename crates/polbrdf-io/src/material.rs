@@ -1,13 +1,13 @@
 //! Material files: flat TOML with the keys of [`polbrdf::MaterialSpec`] (see the README's CLI
 //! contract), or a preset name.
 
-use crate::csv_io::{line_of, read_text};
+use crate::csv_io::read_text;
 use crate::error::{Error, Result};
+use crate::toml_doc::{self, Format, Key, Kind, TomlDoc};
 use polbrdf::model::KeyValue;
 use polbrdf::MaterialSpec;
-use std::collections::BTreeMap;
 use std::path::Path;
-use toml::{Spanned, Value};
+use toml::Value;
 
 /// The keys a material file may hold, in the order [`material_to_toml`] writes them (the core's
 /// list, [`polbrdf::model::KEYS`]).
@@ -21,46 +21,24 @@ pub use polbrdf::model::KEYS;
 /// unknown key, a wrong type or an invalid value (with the key's line), [`Error::File`] for a
 /// missing required key.
 pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let text = &*crate::csv_io::lone_cr_to_lf(text);
-    let table: BTreeMap<Spanned<String>, Spanned<Value>> =
-        toml::from_str(text).map_err(|e| Error::Syntax {
-            path: path.to_path_buf(),
-            line: e.span().map_or(1, |s| line_of(text, s.start)),
-            // Valid TOML that is no flat table of keys: a dotted key or a table, which the
-            // spanned reader reports in serde's words.
-            message: if toml::from_str::<toml::Table>(text).is_ok() {
-                "dotted keys (`a.b = …`) and tables are not allowed in a material file: every \
-                 key is a plain name (`n = 1.5`)"
-                    .into()
-            } else {
-                crate::csv_io::toml_message(&e, text)
-            },
-        })?;
-    let mut lines: BTreeMap<&str, usize> = BTreeMap::new();
-    let field_err = |key: &str, line: usize, message: String| Error::Field {
-        path: path.to_path_buf(),
-        line,
-        field: key.to_string(),
-        message,
-    };
-
+    let keys: Vec<Key> = KEYS
+        .iter()
+        .map(|k| toml_doc::key(k, Kind::Any, ""))
+        .collect();
+    let doc = TomlDoc::parse(
+        text,
+        path,
+        Format {
+            noun: "material file",
+            example: "`n = 1.5`",
+            keys: &keys,
+        },
+    )?;
     let mut spec = MaterialSpec::new(f64::NAN, f64::NAN);
     spec.sigma_deg = None;
     spec.k = 0.0;
     let mut have_n = false;
-    for (key, value) in &table {
-        let line = line_of(text, key.span().start);
-        let name = key.get_ref().as_str();
-        let Some(&known) = KEYS.iter().find(|k| **k == name) else {
-            return Err(field_err(
-                &crate::csv_io::short_name(name),
-                line,
-                format!("unknown key (known keys: {})", KEYS.join(", ")),
-            ));
-        };
-        lines.insert(known, line);
-        let v = value.get_ref();
+    for (known, _, v) in doc.keys() {
         let value = match v {
             Value::Float(x) => KeyValue::Number(*x),
             Value::Integer(i) => KeyValue::Number(*i as f64),
@@ -68,19 +46,14 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             Value::Boolean(b) => KeyValue::Bool(*b),
             other => {
                 let want = polbrdf::model::spec::expected(known).unwrap_or("a value");
-                return Err(field_err(
-                    known,
-                    line,
-                    format!("expected {want}, got {}", other.type_str()),
-                ));
+                return Err(doc.error(known, format!("expected {want}, got {}", other.type_str())));
             }
         };
         have_n |= known == "n";
         if known == "index" {
             let KeyValue::Text(source) = value else {
-                return Err(field_err(
+                return Err(doc.error(
                     known,
-                    line,
                     format!(
                         "expected {}",
                         polbrdf::model::spec::expected(known).unwrap_or("a string")
@@ -90,7 +63,7 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             // A library id or a refractiveindex.info YAML file, relative to this file's folder.
             let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
             let index = crate::library::resolve(&source, folder)
-                .map_err(|e| field_err(known, line, e.to_string()))?;
+                .map_err(|e| doc.error(known, e.to_string()))?;
             // A file is recorded by its absolute path, so that a material written elsewhere
             // (`material_to_toml`, a fit's output) still finds it.
             let source = match source.strip_prefix(crate::library::PREFIX) {
@@ -112,14 +85,13 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             });
             continue;
         }
-        spec.set(known, value)
-            .map_err(|m| field_err(known, line, m))?;
+        spec.set(known, value).map_err(|m| doc.error(known, m))?;
     }
-    if let Some(&line) = lines.get("index") {
-        if let Some(both) = ["n", "k"].into_iter().find(|k| lines.contains_key(k)) {
-            return Err(field_err(
+    if doc.has("index") {
+        let line = doc.line("index");
+        if let Some(both) = ["n", "k"].into_iter().find(|k| doc.has(k)) {
+            return Err(doc.error(
                 both,
-                lines[both],
                 format!(
                     "give either `index` (line {line}: a spectral index) or the constant `n`, `k`, \
                      not both"
@@ -127,12 +99,10 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             ));
         }
     } else if !have_n {
-        return Err(Error::File {
-            path: path.to_path_buf(),
-            message: "missing required key `n` (real refractive index), or `index` (a spectral \
-                      index: \"library:<id>\" or a refractiveindex.info YAML file)"
-                .into(),
-        });
+        return Err(doc.file_error(
+            "missing required key `n` (real refractive index), or `index` (a spectral index: \
+             \"library:<id>\" or a refractiveindex.info YAML file)",
+        ));
     }
     // Let the core validate values; map its parameter names back to the file's lines. A
     // spectral material is validated at the first wavelength of its data.
@@ -153,12 +123,9 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             }
             _ => None,
         };
-        match key.and_then(|k| lines.get(k).map(|l| (k, *l))) {
-            Some((k, line)) => field_err(k, line, e.to_string()),
-            None => Error::File {
-                path: path.to_path_buf(),
-                message: e.to_string(),
-            },
+        match key.filter(|k| doc.has(k)) {
+            Some(k) => doc.error(k, e.to_string()),
+            None => doc.file_error(e.to_string()),
         }
     })?;
     Ok(spec)

@@ -19,7 +19,7 @@ pub fn measurable_columns() -> Vec<String> {
         "brdf_s".into(),
         "brdf_p".into(),
     ];
-    cols.extend((0..16).map(|k| format!("m{}{}", k / 4, k % 4)));
+    cols.extend(polbrdf::Mueller::COLUMNS.map(String::from));
     cols
 }
 

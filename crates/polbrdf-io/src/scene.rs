@@ -75,11 +75,12 @@
 //! table is rows of `KEYS` and a function; a new sky model is a row of `SKY_MODELS`, its keys
 //! in `KEYS` and an arm of the match in `sky`.
 
-use crate::csv_io::{line_of, read_text, toml_message};
+use crate::csv_io::read_text;
 use crate::csv_io::{parse_band_csv, parse_sky_profile_csv, parse_sky_table_csv};
-use crate::csv_io::{read_band_csv, read_sky_profile_csv, read_sky_table_csv, short_name, show};
+use crate::csv_io::{read_band_csv, read_sky_profile_csv, read_sky_table_csv, show};
 use crate::error::{Error, Result};
 use crate::material::load_material;
+use crate::toml_doc::{key, split, Format, Key, Kind, TomlDoc};
 use polbrdf::analysis::detection::path::KOSCHMIEDER;
 use polbrdf::analysis::detection::{Horizon, PathSpec};
 use polbrdf::analysis::scene::Sun;
@@ -90,7 +91,7 @@ use polbrdf::{MaterialSpec, Spectrum, Stokes};
 use std::collections::BTreeMap;
 use std::f64::consts::FRAC_PI_2;
 use std::path::{Path, PathBuf};
-use toml::{Spanned, Value};
+use toml::Value;
 
 /// A target or a background of a scene (`[target]`, `[background]`).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -124,73 +125,6 @@ pub struct Scene {
     /// Every file the scene names, as resolved (band, sky table, sky profile, material files
     /// and the index files these name): inputs an output must not replace.
     pub files: Vec<PathBuf>,
-}
-
-/// What a key holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Number,
-    /// An array of numbers (of any length: the key's reader checks it).
-    Numbers,
-    Text,
-    /// A date-time: a TOML date-time or a string holding one.
-    DateTime,
-    Table,
-}
-
-impl Kind {
-    fn word(self) -> &'static str {
-        match self {
-            Kind::Number => "a number",
-            Kind::Numbers => "an array of numbers",
-            Kind::Text => "a string",
-            Kind::DateTime => "a date-time",
-            Kind::Table => "a table",
-        }
-    }
-
-    fn holds(self, value: &Value) -> bool {
-        match (self, value) {
-            (Kind::Numbers, Value::Array(a)) => a.iter().all(is_number),
-            _ => matches!(
-                (self, value),
-                (Kind::Number, Value::Float(_) | Value::Integer(_))
-                    | (Kind::Text, Value::String(_))
-                    | (Kind::DateTime, Value::String(_) | Value::Datetime(_))
-                    | (Kind::Table, Value::Table(_))
-            ),
-        }
-    }
-}
-
-fn is_number(value: &Value) -> bool {
-    matches!(value, Value::Float(_) | Value::Integer(_))
-}
-
-/// What `value` is, for messages: its TOML type, and for an array where numbers are expected
-/// what it holds that is no number.
-fn type_of(kind: Kind, value: &Value) -> String {
-    match value {
-        Value::Array(a) if kind == Kind::Numbers => match a.iter().find(|v| !is_number(v)) {
-            Some(v) => format!("an array holding a {}", v.type_str()),
-            None => "array".into(),
-        },
-        v => v.type_str().into(),
-    }
-}
-
-/// One key of the format.
-#[derive(Debug)]
-struct Key {
-    /// Its dotted name, `table.key` inside a table (as messages and the core spell it).
-    name: &'static str,
-    kind: Kind,
-    /// What it holds, in words (for messages).
-    what: &'static str,
-}
-
-const fn key(name: &'static str, kind: Kind, what: &'static str) -> Key {
-    Key { name, kind, what }
 }
 
 /// Every key and table of a scene file, tables before their keys.
@@ -399,28 +333,6 @@ pub enum SceneValue {
     Text(String),
 }
 
-/// The table a dotted key belongs to (`None` at the top level) and its name inside it.
-fn split(name: &str) -> (Option<&str>, &str) {
-    match name.split_once('.') {
-        Some((table, key)) => (Some(table), key),
-        None => (None, name),
-    }
-}
-
-/// The key named `name` in `table` (`None`: the top level).
-fn known(table: Option<&str>, name: &str) -> Option<&'static Key> {
-    KEYS.iter().find(|k| split(k.name) == (table, name))
-}
-
-/// The names of the keys of `table` (without the table's prefix).
-fn keys_of(table: Option<&str>) -> Vec<&'static str> {
-    KEYS.iter()
-        .map(|k| split(k.name))
-        .filter(|(t, _)| *t == table)
-        .map(|(_, k)| k)
-        .collect()
-}
-
 /// Which sky a row of `SKY_MODELS` builds: the sky models by kind, for readers of other
 /// spellings of a scene (the Python module's keywords) that take the names from here.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -437,6 +349,28 @@ pub enum SkyKind {
     ClearSky,
     /// `table`.
     Table,
+}
+
+impl SkyKind {
+    /// Its name in scene files (`[sky] model = …`), from `SKY_MODELS`.
+    pub fn name(self) -> &'static str {
+        SKY_MODELS
+            .iter()
+            .find(|m| m.kind == self)
+            .map_or("none", |m| m.name)
+    }
+
+    /// The kind of `sky`.
+    pub fn of(sky: &SkyModel) -> Self {
+        match sky {
+            SkyModel::None => SkyKind::None,
+            SkyModel::Uniform { .. } => SkyKind::Uniform,
+            SkyModel::Thermal { .. } => SkyKind::Thermal,
+            SkyModel::Profile(_) => SkyKind::Profile,
+            SkyModel::ClearSky { .. } => SkyKind::ClearSky,
+            SkyModel::Table(_) => SkyKind::Table,
+        }
+    }
 }
 
 /// A sky model of `[sky] model = …` and the keys it takes besides `model`.
@@ -483,333 +417,41 @@ const SKY_MODELS: &[SkyModelKeys] = &[
     },
 ];
 
-/// A TOML table with the position of every key and value.
-type SpannedTable = BTreeMap<Spanned<String>, Spanned<Value>>;
+/// The scene format of [`TomlDoc`].
+const FORMAT: Format<'static> = Format {
+    noun: "scene file",
+    example: "`wavelength_um = 10`",
+    keys: KEYS,
+};
 
-/// The keys of a scene file, checked against `KEYS` (known, of the right kind).
-struct Doc<'a> {
-    path: &'a Path,
-    /// The folder relative file names are found in (`None`: the working directory).
-    folder: Option<&'a Path>,
-    /// Every key given, by its dotted name: its line and its value (tables: an empty table,
-    /// their line that of their header).
-    found: BTreeMap<&'static str, (usize, Value)>,
-    /// The files read so far (see [`Scene::files`]).
-    files: std::cell::RefCell<Vec<PathBuf>>,
-    /// The named files' texts by their resolved path ([`parse_scene_with_files`]): read from
-    /// here rather than from the file system. `None`: the file system.
-    texts: Option<&'a BTreeMap<PathBuf, String>>,
+/// An [`polbrdf::Error::InvalidParameter`] of `name` (a key), at its line.
+fn invalid(doc: &TomlDoc<'_>, name: &'static str, value: f64, reason: &'static str) -> Error {
+    doc.core_error(polbrdf::Error::InvalidParameter {
+        name,
+        value,
+        reason,
+    })
 }
 
-impl<'a> Doc<'a> {
-    /// Reads the keys of `text` (BOM already stripped).
-    fn parse(text: &str, path: &'a Path) -> Result<Self> {
-        let mut doc = Doc {
-            path,
-            folder: path.parent().filter(|p| !p.as_os_str().is_empty()),
-            found: BTreeMap::new(),
-            files: std::cell::RefCell::new(Vec::new()),
-            texts: None,
-        };
-        let top: SpannedTable = toml::from_str(text).map_err(|e| doc.syntax(e, text, text))?;
-        // The top level, in file order. Then the tables' keys: `toml::Value` keeps no position
-        // inside a table, so the text is read a second time as tables of spanned keys, with
-        // the top-level values (which are no tables, once checked) blanked out — every byte
-        // but the line ends replaced by a space, so that positions stay those of `text`.
-        let mut values = Vec::new();
-        let mut top: Vec<_> = top.into_iter().collect();
-        top.sort_by_key(|(k, _)| k.span().start);
-        for (k, v) in top {
-            let key = doc.check(text, None, &k, v.get_ref())?;
-            let line = line_of(text, k.span().start);
-            if key.kind == Kind::Table {
-                doc.found.insert(key.name, (line, empty()));
-            } else {
-                values.push(k.span().start..v.span().end);
-                doc.found.insert(key.name, (line, v.into_inner()));
-            }
-        }
-        let mut blanked = String::with_capacity(text.len());
-        for (i, c) in text.char_indices() {
-            if c != '\n' && values.iter().any(|r| r.contains(&i)) {
-                blanked.extend(std::iter::repeat_n(' ', c.len_utf8()));
-            } else {
-                blanked.push(c);
-            }
-        }
-        let tables: BTreeMap<Spanned<String>, Spanned<SpannedTable>> =
-            toml::from_str(&blanked).map_err(|e| doc.syntax(e, &blanked, text))?;
-        let mut inner: Vec<(String, Spanned<String>, Spanned<Value>)> = tables
-            .into_iter()
-            .flat_map(|(t, table)| {
-                let t = t.into_inner();
-                table
-                    .into_inner()
-                    .into_iter()
-                    .map(move |(k, v)| (t.clone(), k, v))
-            })
-            .collect();
-        inner.sort_by_key(|(_, k, _)| k.span().start);
-        for (table, k, v) in inner {
-            let key = doc.check(text, Some(&table), &k, v.get_ref())?;
-            let line = line_of(text, k.span().start);
-            doc.found.insert(key.name, (line, v.into_inner()));
-        }
-        Ok(doc)
-    }
-
-    /// A TOML error of `toml` as a syntax error at the line of `original` (the same
-    /// positions).
-    fn syntax(&self, e: toml::de::Error, toml: &str, original: &str) -> Error {
-        // The one construct that is valid TOML but defeats the positions of keys.
-        let dotted = toml::from_str::<toml::Table>(toml).is_ok();
-        Error::Syntax {
-            path: self.path.to_path_buf(),
-            line: e.span().map_or(1, |s| line_of(original, s.start)),
-            message: if dotted {
-                "dotted keys (`table.key = …`) are not supported in scene files: write the table \
-                 out (`[table]`, then `key = …`)"
-                    .into()
-            } else {
-                toml_message(&e, original)
-            },
-        }
-    }
-
-    /// The known key `k` of `table` holding a value of its kind, or the error.
-    fn check(
-        &self,
-        text: &str,
-        table: Option<&str>,
-        k: &Spanned<String>,
-        value: &Value,
-    ) -> Result<&'static Key> {
-        let line = line_of(text, k.span().start);
-        let name = k.get_ref();
-        let Some(key) = known(table, name) else {
-            let is_table = matches!(value, Value::Table(_));
-            let (field, message) = match table {
-                None if is_table => (
-                    short_name(name),
-                    format!(
-                        "unknown table [{}] (known tables: {})",
-                        short_name(name),
-                        tables_list(&keys_of(None))
-                    ),
-                ),
-                None => (
-                    short_name(name),
-                    format!(
-                        "unknown key (known: `wavelength_um` and the tables {})",
-                        tables_list(&keys_of(None))
-                    ),
-                ),
-                Some(t) => (
-                    format!("{}.{}", short_name(t), short_name(name)),
-                    format!(
-                        "unknown key in [{}] (known keys: {})",
-                        short_name(t),
-                        keys_of(Some(t)).join(", ")
-                    ),
-                ),
-            };
-            return Err(Error::Field {
-                path: self.path.to_path_buf(),
-                line,
-                field,
-                message,
-            });
-        };
-        if !key.kind.holds(value) {
-            return Err(Error::Field {
-                path: self.path.to_path_buf(),
-                line,
-                field: key.name.to_string(),
-                message: format!(
-                    "expected {} ({}), got {}",
-                    key.kind.word(),
-                    key.what,
-                    type_of(key.kind, value)
-                ),
-            });
-        }
-        Ok(key)
-    }
-
-    fn has(&self, key: &str) -> bool {
-        self.found.contains_key(key)
-    }
-
-    /// The line of `key`, or of the nearest table of it that is given (1 when none is).
-    fn line(&self, key: &str) -> usize {
-        self.found
-            .get(key)
-            .or_else(|| split(key).0.and_then(|t| self.found.get(t)))
-            .map_or(1, |(line, _)| *line)
-    }
-
-    fn number(&self, key: &str) -> Option<f64> {
-        match self.found.get(key) {
-            Some((_, Value::Float(x))) => Some(*x),
-            Some((_, Value::Integer(i))) => Some(*i as f64),
-            _ => None,
-        }
-    }
-
-    fn numbers(&self, key: &str) -> Option<Vec<f64>> {
-        match self.found.get(key) {
-            Some((_, Value::Array(a))) => a
-                .iter()
-                .map(|v| match v {
-                    Value::Float(x) => Some(*x),
-                    Value::Integer(i) => Some(*i as f64),
-                    _ => None,
-                })
-                .collect(),
-            _ => None,
-        }
-    }
-
-    /// The number `key` that its table requires (its table is given).
-    fn required_in_table(&self, key: &str) -> Result<f64> {
-        self.number(key).ok_or_else(|| {
-            let (table, name) = split(key);
-            let what = KEYS.iter().find(|k| k.name == key).map_or("", |k| k.what);
-            self.error(
-                table.unwrap_or(key),
-                format!("missing required key `{name}` ({what})"),
-            )
-        })
-    }
-
-    /// An [`polbrdf::Error::InvalidParameter`] of `name` (a key), at its line.
-    fn invalid(&self, name: &'static str, value: f64, reason: &'static str) -> Error {
-        self.core_error(polbrdf::Error::InvalidParameter {
-            name,
-            value,
-            reason,
-        })
-    }
-
-    fn text(&self, key: &str) -> Option<&str> {
-        match self.found.get(key) {
-            Some((_, Value::String(s))) => Some(s),
-            _ => None,
-        }
-    }
-
-    /// An error of the value of `key`, at its line.
-    fn error(&self, key: &str, message: impl Into<String>) -> Error {
-        Error::Field {
-            path: self.path.to_path_buf(),
-            line: self.line(key),
-            field: key.to_string(),
-            message: message.into(),
-        }
-    }
-
-    /// A core error, at the line of the key it names.
-    fn core_error(&self, e: polbrdf::Error) -> Error {
-        match &e {
-            polbrdf::Error::InvalidParameter { name, .. } if self.has(name) => {
-                self.error(name, e.to_string())
-            }
-            _ => Error::File {
-                path: self.path.to_path_buf(),
-                message: e.to_string(),
-            },
-        }
-    }
-
-    /// `name` relative to the scene file's folder (unless absolute).
-    fn resolve(&self, name: &str) -> PathBuf {
-        match self.folder {
-            Some(dir) if Path::new(name).is_relative() => dir.join(name),
-            _ => PathBuf::from(name),
-        }
-    }
-
-    /// The file `file`: read by `read` from the file system, or parsed by `parse` from its
-    /// text given to [`parse_scene_with_files`] (a file not given there is an error).
-    fn load<T>(
-        &self,
-        file: &Path,
-        read: impl FnOnce(&Path) -> Result<T>,
-        parse: impl FnOnce(&[u8], &Path) -> Result<T>,
-    ) -> Result<T> {
-        let Some(texts) = self.texts else {
-            return read(file);
-        };
-        match texts.get(file) {
-            Some(text) => parse(text.as_bytes(), file),
-            None => Err(Error::File {
-                path: file.to_path_buf(),
-                message: format!(
-                    "no such file (the files given: {})",
-                    texts
-                        .keys()
-                        .map(|k| k.display().to_string())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            }),
-        }
-    }
-
-    /// The file that `key` names, read by `read` (or parsed by `parse`, [`Doc::load`]); its
-    /// errors wrapped in one naming `key`. `None` when `key` is absent.
-    fn read_file<T>(
-        &self,
-        key: &str,
-        read: impl FnOnce(&Path) -> Result<T>,
-        parse: impl FnOnce(&[u8], &Path) -> Result<T>,
-    ) -> Result<Option<T>> {
-        let Some(name) = self.text(key) else {
-            return Ok(None);
-        };
-        if name.is_empty() {
-            return Err(self.error(key, "expected the path of a file, got an empty string"));
-        }
-        let file = self.resolve(name);
-        self.files.borrow_mut().push(file.clone());
-        self.load(&file, read, parse)
-            .map(Some)
-            .map_err(|e| self.error(key, e.to_string()))
-    }
-
-    /// The number `key` that sky model `model` requires.
-    fn required_number(&self, model: &str, key: &str) -> Result<f64> {
-        self.number(key)
-            .ok_or_else(|| self.missing_for_model(model, key))
-    }
-
-    fn missing_for_model(&self, model: &str, key: &str) -> Error {
-        let what = KEYS.iter().find(|k| k.name == key).map_or("", |k| k.what);
-        self.error(
-            "sky.model",
-            format!(
-                "sky model \"{model}\" requires the key `{}` ({what})",
-                split(key).1
-            ),
-        )
-    }
+/// The number `key` that sky model `model` requires.
+fn required_for_model(doc: &TomlDoc<'_>, model: &str, key: &str) -> Result<f64> {
+    doc.number(key)
+        .ok_or_else(|| missing_for_model(doc, model, key))
 }
 
-fn empty() -> Value {
-    Value::Table(toml::Table::new())
-}
-
-fn tables_list(names: &[&str]) -> String {
-    names
-        .iter()
-        .filter(|n| known(None, n).is_some_and(|k| k.kind == Kind::Table))
-        .map(|n| format!("[{n}]"))
-        .collect::<Vec<_>>()
-        .join(", ")
+fn missing_for_model(doc: &TomlDoc<'_>, model: &str, key: &str) -> Error {
+    doc.error(
+        "sky.model",
+        format!(
+            "sky model \"{model}\" requires the key `{}` ({})",
+            split(key).1,
+            doc.what(key)
+        ),
+    )
 }
 
 /// `wavelength_um` or `[band]`: exactly one of them.
-fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
+fn spectrum(doc: &TomlDoc<'_>) -> Result<Spectrum> {
     match (doc.number("wavelength_um"), doc.has("band")) {
         (Some(_), true) => Err(doc.error(
             "wavelength_um",
@@ -820,7 +462,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
             ),
         )),
         (None, false) => Err(Error::File {
-            path: doc.path.to_path_buf(),
+            path: doc.path().to_path_buf(),
             message: "no spectrum: give `wavelength_um` (one wavelength, µm) or a [band] table \
                       with response = \"FILE.csv\" (a band CSV file)"
                 .into(),
@@ -845,7 +487,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
                 }
             }
             let band = doc
-                .read_file("band.response", read_band_csv, parse_band_csv)?
+                .read_file_or_text("band.response", read_band_csv, parse_band_csv)?
                 .ok_or_else(|| {
                     doc.error(
                     "band",
@@ -873,7 +515,7 @@ fn spectrum(doc: &Doc<'_>) -> Result<Spectrum> {
 }
 
 /// `[surface]`: the surface temperature (checked with the scene).
-fn surface(doc: &Doc<'_>) -> Option<f64> {
+fn surface(doc: &TomlDoc<'_>) -> Option<f64> {
     doc.number("surface.temperature_k")
 }
 
@@ -894,7 +536,7 @@ const BACKGROUND: ObjectKeys = ObjectKeys {
 };
 
 /// `[target]` or `[background]`.
-fn object(doc: &Doc<'_>, keys: &ObjectKeys) -> Result<SceneObject> {
+fn object(doc: &TomlDoc<'_>, keys: &ObjectKeys) -> Result<SceneObject> {
     let temperature_k = doc
         .number(keys.temperature_k)
         .map(|t| temperature(keys.temperature_k, t).map_err(|e| doc.core_error(e)))
@@ -912,7 +554,7 @@ fn object(doc: &Doc<'_>, keys: &ObjectKeys) -> Result<SceneObject> {
 /// The material `arg` of `key`: a material file relative to the scene file's folder when it
 /// contains a `/` or ends in `.toml`, else a preset name (as [`load_material`]); with its
 /// display name.
-fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String)> {
+fn material(doc: &TomlDoc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String)> {
     if arg.is_empty() {
         return Err(doc.error(
             key,
@@ -923,7 +565,7 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
     // [`load_material`]: a file named like a preset never shadows it).
     let spec = if crate::material::names_a_file(arg) {
         let file = doc.resolve(arg);
-        doc.files.borrow_mut().push(file.clone());
+        doc.record(file.clone());
         let read = |file: &Path| match file.to_str() {
             Some(f) if crate::material::names_a_file(f) => load_material(f),
             Some(f) => load_material(&format!("./{f}")),
@@ -940,9 +582,9 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
         load_material(arg)
     }
     .map_err(|e| doc.error(key, e.to_string()))?;
-    doc.files
-        .borrow_mut()
-        .extend(crate::material::index_file(&spec));
+    if let Some(index) = crate::material::index_file(&spec) {
+        doc.record(index);
+    }
     let name = spec.name.clone().unwrap_or_else(|| {
         Path::new(arg)
             .file_stem()
@@ -955,46 +597,46 @@ fn material(doc: &Doc<'_>, key: &str, arg: &str) -> Result<(MaterialSpec, String
 /// default; the angles in radians (the azimuth first taken modulo 360°, exactly), the Stokes
 /// vector normalized to `s0 = 1`. `None` without a `[sun]`. The values are checked here, in the units of the file (the core checks them again,
 /// in radians).
-fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
+fn sun(doc: &TomlDoc<'_>) -> Result<Option<Sun>> {
     if !doc.has("sun") {
         return Ok(None);
     }
     if let Some(time) = sun_time(doc)? {
         return sun_from_time(doc, &time).map(Some);
     }
-    let zenith_deg = doc
-        .required_in_table("sun.zenith_deg")
-        .map_err(|e| match e {
-            Error::Field {
-                path,
-                line,
-                field,
-                message,
-            } => Error::Field {
-                path,
-                line,
-                field,
-                message: format!(
+    let zenith_deg = doc.required_number("sun.zenith_deg").map_err(|e| match e {
+        Error::Field {
+            path,
+            line,
+            field,
+            message,
+        } => Error::Field {
+            path,
+            line,
+            field,
+            message: format!(
                 "{message}; or place the sun by `date_time`, `latitude_deg` and `longitude_deg`"
             ),
-            },
-            e => e,
-        })?;
-    let irradiance = doc.required_in_table("sun.irradiance")?;
+        },
+        e => e,
+    })?;
+    let irradiance = doc.required_number("sun.irradiance")?;
     let azimuth_deg = doc
         .number("sun.azimuth_deg")
         .unwrap_or(Sun::DEFAULT_AZIMUTH.to_degrees());
     // −0 is 0; a zenith angle just below 90° can round to π/2 in radians.
     let zenith = zenith_deg.to_radians() + 0.0;
     if !(zenith_deg.is_finite() && (0.0..90.0).contains(&zenith_deg) && zenith < FRAC_PI_2) {
-        return Err(doc.invalid(
+        return Err(invalid(
+            doc,
             "sun.zenith_deg",
             zenith_deg,
             "the sun must be above the horizon: in [0, 90) degrees",
         ));
     }
     if !(azimuth_deg.is_finite() && azimuth_deg.abs() <= polbrdf::MAX_AZIMUTH_DEG) {
-        return Err(doc.invalid(
+        return Err(invalid(
+            doc,
             "sun.azimuth_deg",
             azimuth_deg,
             "must be finite and at most 1e8 degrees in magnitude (as every azimuth)",
@@ -1004,7 +646,12 @@ fn sun(doc: &Doc<'_>) -> Result<Option<Sun>> {
     // bit); an azimuth within a turn is kept as written.
     let azimuth_deg = azimuth_deg % 360.0;
     if !(irradiance.is_finite() && irradiance >= 0.0) {
-        return Err(doc.invalid("sun.irradiance", irradiance, "must be finite and >= 0"));
+        return Err(invalid(
+            doc,
+            "sun.irradiance",
+            irradiance,
+            "must be finite and >= 0",
+        ));
     }
     let stokes = match doc.numbers("sun.stokes") {
         None => Stokes::unpolarized(),
@@ -1032,9 +679,9 @@ const SUN_TIME_KEYS: [&str; 8] = [
 
 /// `[sun]`'s date, time and place, when `date_time` is given (`None` otherwise): every key
 /// of the two ways of giving the sun's position is checked to belong to the one used.
-fn sun_time(doc: &Doc<'_>) -> Result<Option<SunTime>> {
+fn sun_time(doc: &TomlDoc<'_>) -> Result<Option<SunTime>> {
     let by_angles = ["sun.zenith_deg", "sun.azimuth_deg"];
-    let Some((_, date_time)) = doc.found.get("sun.date_time") else {
+    let Some(date_time) = doc.value("sun.date_time") else {
         if let Some(key) = SUN_TIME_KEYS.iter().find(|k| doc.has(k)) {
             return Err(doc.error(
                 key,
@@ -1064,8 +711,8 @@ fn sun_time(doc: &Doc<'_>) -> Result<Option<SunTime>> {
         _ => unreachable!("checked against Kind::DateTime"),
     }
     .map_err(|m| doc.error("sun.date_time", m))?;
-    let latitude_deg = doc.required_in_table("sun.latitude_deg")?;
-    let longitude_deg = doc.required_in_table("sun.longitude_deg")?;
+    let latitude_deg = doc.required_number("sun.latitude_deg")?;
+    let longitude_deg = doc.required_number("sun.longitude_deg")?;
     let d = Site::at(latitude_deg, longitude_deg);
     let site = Site {
         elevation_m: doc.number("sun.elevation_m").unwrap_or(d.elevation_m),
@@ -1078,7 +725,8 @@ fn sun_time(doc: &Doc<'_>) -> Result<Option<SunTime>> {
         .number("sun.phi0_azimuth_deg")
         .unwrap_or(SunTime::DEFAULT_PHI0_AZIMUTH_DEG);
     if !(phi0.is_finite() && phi0.abs() <= polbrdf::MAX_AZIMUTH_DEG) {
-        return Err(doc.invalid(
+        return Err(invalid(
+            doc,
             "sun.phi0_azimuth_deg",
             phi0,
             "must be finite and at most 1e8 degrees in magnitude (as every azimuth)",
@@ -1095,8 +743,8 @@ fn sun_time(doc: &Doc<'_>) -> Result<Option<SunTime>> {
 /// The sun of `[sun]` by date, time and place: above the horizon, or an error naming
 /// `date_time` (a scene file is one instant; a sweep over the day takes the sun away at night
 /// itself, docs/sun-position.md).
-fn sun_from_time(doc: &Doc<'_>, time: &SunTime) -> Result<Sun> {
-    let irradiance = doc.required_in_table("sun.irradiance")?;
+fn sun_from_time(doc: &TomlDoc<'_>, time: &SunTime) -> Result<Sun> {
+    let irradiance = doc.required_number("sun.irradiance")?;
     let (position, direction) = time.surface_direction().map_err(|e| doc.core_error(e))?;
     let Some((zenith, azimuth)) = direction else {
         return Err(doc.error(
@@ -1114,7 +762,12 @@ fn sun_from_time(doc: &Doc<'_>, time: &SunTime) -> Result<Sun> {
         ));
     };
     if !(irradiance.is_finite() && irradiance >= 0.0) {
-        return Err(doc.invalid("sun.irradiance", irradiance, "must be finite and >= 0"));
+        return Err(invalid(
+            doc,
+            "sun.irradiance",
+            irradiance,
+            "must be finite and >= 0",
+        ));
     }
     let stokes = match doc.numbers("sun.stokes") {
         None => Stokes::unpolarized(),
@@ -1130,7 +783,7 @@ fn sun_from_time(doc: &Doc<'_>, time: &SunTime) -> Result<Sun> {
 
 /// `sun.stokes`: four finite numbers, `s0 > 0`, a degree of polarization at most 1 (to 1e-9,
 /// as `--stokes`), normalized to `s0 = 1` (and a DoP within the tolerance above 1 to 1).
-fn sun_stokes(doc: &Doc<'_>, s: &[f64]) -> Result<Stokes> {
+fn sun_stokes(doc: &TomlDoc<'_>, s: &[f64]) -> Result<Stokes> {
     let key = "sun.stokes";
     let shown = || {
         let v: Vec<String> = s.iter().map(|x| show(*x)).collect();
@@ -1172,7 +825,7 @@ fn sun_stokes(doc: &Doc<'_>, s: &[f64]) -> Result<Stokes> {
 }
 
 /// `[sky]`: the model of `SKY_MODELS` (default `none`) with its keys only.
-fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
+fn sky(doc: &TomlDoc<'_>) -> Result<SkyModel> {
     let name = doc.text("sky.model").unwrap_or(SKY_MODELS[0].name);
     let Some(model) = SKY_MODELS.iter().find(|m| m.name == name) else {
         return Err(doc.error(
@@ -1191,7 +844,8 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
     let mut given: Vec<(usize, &str)> = KEYS
         .iter()
         .filter(|k| split(k.name).0 == Some("sky") && k.name != "sky.model")
-        .filter_map(|k| doc.found.get(k.name).map(|(line, _)| (*line, k.name)))
+        .filter(|k| doc.has(k.name))
+        .map(|k| (doc.line(k.name), k.name))
         .collect();
     given.sort();
     if let Some((_, key)) = given.iter().find(|(_, k)| !model.keys.contains(k)) {
@@ -1230,17 +884,17 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
     Ok(match model.kind {
         SkyKind::None => SkyModel::None,
         SkyKind::Uniform => SkyModel::Uniform {
-            radiance: doc.required_number(name, "sky.radiance")?,
+            radiance: required_for_model(doc, name, "sky.radiance")?,
         },
         SkyKind::Thermal => SkyModel::Thermal {
-            temperature_k: doc.required_number(name, "sky.temperature_k")?,
+            temperature_k: required_for_model(doc, name, "sky.temperature_k")?,
         },
         SkyKind::Profile => SkyModel::Profile(
-            doc.read_file("sky.file", read_sky_profile_csv, parse_sky_profile_csv)?
-                .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
+            doc.read_file_or_text("sky.file", read_sky_profile_csv, parse_sky_profile_csv)?
+                .ok_or_else(|| missing_for_model(doc, name, "sky.file"))?,
         ),
         SkyKind::ClearSky => {
-            let irradiance = doc.required_number(name, "sky.irradiance")?;
+            let irradiance = required_for_model(doc, name, "sky.irradiance")?;
             if !doc.has("sun") {
                 return Err(doc.error(
                     "sky.model",
@@ -1259,14 +913,14 @@ fn sky(doc: &Doc<'_>) -> Result<SkyModel> {
             }
         }
         SkyKind::Table => SkyModel::Table(
-            doc.read_file("sky.file", read_sky_table_csv, parse_sky_table_csv)?
-                .ok_or_else(|| doc.missing_for_model(name, "sky.file"))?,
+            doc.read_file_or_text("sky.file", read_sky_table_csv, parse_sky_table_csv)?
+                .ok_or_else(|| missing_for_model(doc, name, "sky.file"))?,
         ),
     })
 }
 
 /// `[atmosphere]`, with the defaults of [`Atmosphere`].
-fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
+fn atmosphere(doc: &TomlDoc<'_>) -> Atmosphere {
     let d = Atmosphere::default();
     Atmosphere {
         transmittance: doc
@@ -1280,7 +934,7 @@ fn atmosphere(doc: &Doc<'_>) -> Atmosphere {
 
 /// `[path]` (docs/detection.md): `table`, or one of `extinction_per_m` and `visibility_km`
 /// with one of `horizon_radiance` and `air_temperature_k`.
-fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
+fn air_path(doc: &TomlDoc<'_>) -> Result<Option<PathSpec>> {
     if !doc.has("path") {
         return Ok(None);
     }
@@ -1302,7 +956,7 @@ fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
         ] {
             exclusive("path.table", k)?;
         }
-        let table = doc.read_file(
+        let table = doc.read_file_or_text(
             "path.table",
             crate::detection_csv::read_path_csv,
             crate::detection_csv::parse_path_csv,
@@ -1361,7 +1015,7 @@ fn air_path(doc: &Doc<'_>) -> Result<Option<PathSpec>> {
 /// parsed (the message then holds that file's own error);
 /// [`Error::File`] when neither `wavelength_um` nor `[band]` is given.
 pub fn parse_scene(text: &str, path: &Path) -> Result<Scene> {
-    scene_of(text, path, None)
+    scene_of(TomlDoc::parse(text, path, FORMAT)?)
 }
 
 /// Parses a scene file's text as [`parse_scene`] does, with the files it names (band, sky
@@ -1377,14 +1031,12 @@ pub fn parse_scene_with_files(
     path: &Path,
     files: &BTreeMap<PathBuf, String>,
 ) -> Result<Scene> {
-    scene_of(text, path, Some(files))
+    scene_of(TomlDoc::parse(text, path, FORMAT)?.with_files(files))
 }
 
-fn scene_of(text: &str, path: &Path, texts: Option<&BTreeMap<PathBuf, String>>) -> Result<Scene> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let text = &*crate::csv_io::lone_cr_to_lf(text);
-    let mut doc = Doc::parse(text, path)?;
-    doc.texts = texts;
+/// The scene of a parsed scene document.
+fn scene_of(doc: TomlDoc<'_>) -> Result<Scene> {
+    let path = doc.path();
     let spectrum = spectrum(&doc)?;
     let sun = sun(&doc)?;
     let sun_time = if sun.is_some() { sun_time(&doc)? } else { None };
@@ -1406,7 +1058,7 @@ fn scene_of(text: &str, path: &Path, texts: Option<&BTreeMap<PathBuf, String>>) 
         background,
         sun_time,
         air_path,
-        files: doc.files.take(),
+        files: doc.files(),
     })
 }
 
@@ -1420,27 +1072,25 @@ fn scene_of(text: &str, path: &Path, texts: Option<&BTreeMap<PathBuf, String>>) 
 pub fn read_scene_keys(path: &Path) -> Result<(Scene, Vec<(&'static str, SceneValue)>)> {
     let text = read_text(path)?;
     let scene = parse_scene(&text, path)?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    let text = &*crate::csv_io::lone_cr_to_lf(text);
-    let doc = Doc::parse(text, path)?;
+    let doc = TomlDoc::parse(&text, path, FORMAT)?;
     let files = ["band.response", "sky.file", "path.table"];
     let materials = ["target.material", "background.material"];
     let keys = KEYS
         .iter()
         .filter_map(|k| {
-            let value = match doc.found.get(k.name)? {
-                (_, Value::String(s)) if files.contains(&k.name) => {
+            let value = match doc.value(k.name)? {
+                Value::String(s) if files.contains(&k.name) => {
                     SceneValue::Text(doc.resolve(s).to_string_lossy().into_owned())
                 }
-                (_, Value::String(s))
+                Value::String(s)
                     if materials.contains(&k.name) && crate::material::names_a_file(s) =>
                 {
                     SceneValue::Text(doc.resolve(s).to_string_lossy().into_owned())
                 }
-                (_, Value::String(s)) => SceneValue::Text(s.clone()),
-                (_, Value::Datetime(d)) => SceneValue::Text(d.to_string()),
-                (_, Value::Array(_)) => SceneValue::Numbers(doc.numbers(k.name)?),
-                (_, Value::Table(_)) => return None,
+                Value::String(s) => SceneValue::Text(s.clone()),
+                Value::Datetime(d) => SceneValue::Text(d.to_string()),
+                Value::Array(_) => SceneValue::Numbers(doc.numbers(k.name)?),
+                Value::Table(_) => return None,
                 _ => SceneValue::Number(doc.number(k.name)?),
             };
             Some((k.name, value))

@@ -1,6 +1,6 @@
-//! Sensor files (docs/detection.md): flat TOML, units in the key names, read as material files
-//! are ([`crate::material`]): every unknown key, wrong type or invalid value an error naming
-//! the file, the line and the key. Two noise models:
+//! Sensor files (docs/detection.md): flat TOML, units in the key names, read by the one TOML
+//! reader ([`crate::toml_doc`]) as material files are: every unknown key, wrong type or invalid
+//! value an error naming the file, the line and the key. Two noise models:
 //!
 //! ```toml
 //! name = "a DoFP camera"               # optional display name
@@ -31,176 +31,146 @@
 //! Files named (`band_response`, `quantum_efficiency_file`) are found relative to the sensor
 //! file's folder.
 
-use crate::csv_io::{line_of, read_band_csv, read_text, short_name, toml_message};
+use crate::csv_io::{read_band_csv, read_text};
 use crate::detection_csv::read_qe_csv;
 use crate::error::{Error, Result};
+use crate::toml_doc::{key, Format, Key, Kind, TomlDoc};
 use polbrdf::analysis::detection::{
     Analyzer, Layout, NoiseSpec, QuantumEfficiency, Sensor, SensorSpec,
 };
-use polbrdf::{Band, Spectrum};
-use std::collections::BTreeMap;
+use polbrdf::{names, Band, Spectrum};
 use std::path::{Path, PathBuf};
-use toml::{Spanned, Value};
 
-/// Which noise model a key belongs to.
+/// The noise models of `noise_model = …` (which noise model a key belongs to).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Model {
-    Any,
+pub enum Model {
+    /// `photon-counting`: a photon-counting camera.
     Photon,
+    /// `nel`: a noise-equivalent radiance (or NETD).
     Nel,
 }
 
-/// What a key holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Number,
-    Numbers,
-    Text,
+impl Model {
+    /// Every noise model.
+    pub const ALL: [Model; 2] = [Model::Photon, Model::Nel];
+
+    /// Its name in sensor files (and in `detect`'s `best.json`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::Photon => "photon-counting",
+            Model::Nel => "nel",
+        }
+    }
 }
 
-/// Every key: name, kind, model, what it is (for messages).
-const KEYS: &[(&str, Kind, Model, &str)] = &[
-    ("name", Kind::Text, Model::Any, "a display name"),
-    (
-        "noise_model",
-        Kind::Text,
-        Model::Any,
-        "\"photon-counting\" or \"nel\"",
-    ),
-    (
-        "layout",
-        Kind::Text,
-        Model::Any,
-        "\"dofp\" or \"per-pixel\"",
-    ),
-    (
+/// Every key, its kind and what it is (for messages).
+const KEYS: &[Key] = &[
+    key("name", Kind::Text, "a display name"),
+    key("noise_model", Kind::Text, "the noise model"),
+    key("layout", Kind::Text, "the analyzer channels' layout"),
+    key(
         "analyzer_angles_deg",
         Kind::Numbers,
-        Model::Any,
         "the analyzer angles, degrees",
     ),
-    (
+    key(
         "q",
         Kind::Number,
-        Model::Any,
         "the principal transmittance q, in (0, 1]",
     ),
-    (
+    key(
         "r",
         Kind::Number,
-        Model::Any,
         "the minor principal transmittance r, in [0, q)",
     ),
-    (
+    key(
         "extinction_ratio",
         Kind::Number,
-        Model::Any,
         "the extinction ratio q/r, > 1",
     ),
-    (
-        "roll_deg",
-        Kind::Number,
-        Model::Any,
-        "the camera roll, degrees",
-    ),
-    (
-        "pixel_pitch_um",
-        Kind::Number,
-        Model::Any,
-        "the pixel pitch, µm",
-    ),
-    (
-        "focal_length_mm",
-        Kind::Number,
-        Model::Any,
-        "the focal length, mm",
-    ),
-    (
-        "frames",
-        Kind::Number,
-        Model::Any,
-        "frames averaged, an integer ≥ 1",
-    ),
-    (
+    key("roll_deg", Kind::Number, "the camera roll, degrees"),
+    key("pixel_pitch_um", Kind::Number, "the pixel pitch, µm"),
+    key("focal_length_mm", Kind::Number, "the focal length, mm"),
+    key("frames", Kind::Number, "frames averaged, an integer ≥ 1"),
+    key(
         "band_response",
         Kind::Text,
-        Model::Any,
         "a band CSV file (wavelength_um,response)",
     ),
-    (
+    key(
         "band_lo_um",
         Kind::Number,
-        Model::Any,
         "the lower edge of a flat band, µm",
     ),
-    (
+    key(
         "band_hi_um",
         Kind::Number,
-        Model::Any,
         "the upper edge of a flat band, µm",
     ),
-    ("f_number", Kind::Number, Model::Photon, "the f-number"),
-    (
+    key("f_number", Kind::Number, "the f-number"),
+    key(
         "optics_transmittance",
         Kind::Number,
-        Model::Photon,
         "the optics transmittance, in (0, 1]",
     ),
-    (
+    key(
         "quantum_efficiency",
         Kind::Number,
-        Model::Photon,
         "a constant quantum efficiency, in (0, 1]",
     ),
-    (
+    key(
         "quantum_efficiency_file",
         Kind::Text,
-        Model::Photon,
         "a QE CSV file (wavelength_um,qe)",
     ),
-    (
+    key(
         "integration_time_ms",
         Kind::Number,
-        Model::Photon,
         "the integration time, ms",
     ),
-    (
-        "full_well_e",
-        Kind::Number,
-        Model::Photon,
-        "the full well, electrons",
-    ),
-    (
+    key("full_well_e", Kind::Number, "the full well, electrons"),
+    key(
         "dark_current_e_per_s",
         Kind::Number,
-        Model::Photon,
         "the dark current, electrons/s",
     ),
-    (
+    key(
         "read_noise_e",
         Kind::Number,
-        Model::Photon,
         "the read noise, electrons rms",
     ),
-    (
+    key(
         "adc_bits",
         Kind::Number,
-        Model::Photon,
         "the ADC's bits, an integer in 1..=32",
     ),
-    (
+    key(
         "nel_w_per_m2_sr",
         Kind::Number,
-        Model::Nel,
         "the NEL per channel, W·m⁻²·sr⁻¹",
     ),
-    ("netd_mk", Kind::Number, Model::Nel, "the NETD, mK"),
-    (
+    key("netd_mk", Kind::Number, "the NETD, mK"),
+    key(
         "netd_reference_k",
         Kind::Number,
-        Model::Nel,
         "the NETD's reference temperature, K",
     ),
+];
+
+/// The keys of one noise model only.
+const MODEL_KEYS: &[(&str, Model)] = &[
+    ("f_number", Model::Photon),
+    ("optics_transmittance", Model::Photon),
+    ("quantum_efficiency", Model::Photon),
+    ("quantum_efficiency_file", Model::Photon),
+    ("integration_time_ms", Model::Photon),
+    ("full_well_e", Model::Photon),
+    ("dark_current_e_per_s", Model::Photon),
+    ("read_noise_e", Model::Photon),
+    ("adc_bits", Model::Photon),
+    ("nel_w_per_m2_sr", Model::Nel),
+    ("netd_mk", Model::Nel),
+    ("netd_reference_k", Model::Nel),
 ];
 
 /// The core's parameter names and the keys that give them.
@@ -242,99 +212,47 @@ pub struct SensorFile {
     pub files: Vec<PathBuf>,
 }
 
-/// The keys given: line and value.
-struct Doc<'a> {
-    path: &'a Path,
-    found: BTreeMap<&'static str, (usize, Value)>,
-    files: Vec<PathBuf>,
+/// The sensor format of [`TomlDoc`].
+const FORMAT: Format<'static> = Format {
+    noun: "sensor file",
+    example: "`f_number = 2.8`",
+    keys: KEYS,
+};
+
+/// The number `key`, required (an error of the file when absent).
+fn required(doc: &TomlDoc<'_>, key: &str) -> Result<f64> {
+    doc.required_number(key)
 }
 
-impl Doc<'_> {
-    fn error(&self, key: &str, message: impl Into<String>) -> Error {
-        Error::Field {
-            path: self.path.to_path_buf(),
-            line: self.found.get(key).map_or(1, |f| f.0),
-            field: key.to_string(),
-            message: message.into(),
-        }
+/// An integer key in `range` (default `default`).
+fn integer(
+    doc: &TomlDoc<'_>,
+    key: &str,
+    default: u32,
+    range: std::ops::RangeInclusive<u32>,
+) -> Result<u32> {
+    let Some(v) = doc.number(key) else {
+        return Ok(default);
+    };
+    if v.fract() != 0.0 || v < f64::from(*range.start()) || v > f64::from(*range.end()) {
+        return Err(doc.error(
+            key,
+            format!(
+                "{v}: must be an integer in {}..={}",
+                range.start(),
+                range.end()
+            ),
+        ));
     }
+    Ok(v as u32)
+}
 
-    fn number(&self, key: &str) -> Option<f64> {
-        match self.found.get(key)? {
-            (_, Value::Float(x)) => Some(*x),
-            (_, Value::Integer(i)) => Some(*i as f64),
-            _ => None,
-        }
-    }
-
-    fn text(&self, key: &str) -> Option<&str> {
-        match self.found.get(key)? {
-            (_, Value::String(s)) => Some(s),
-            _ => None,
-        }
-    }
-
-    fn required(&self, key: &str) -> Result<f64> {
-        self.number(key).ok_or_else(|| {
-            let what = KEYS.iter().find(|k| k.0 == key).map_or("", |k| k.3);
-            Error::File {
-                path: self.path.to_path_buf(),
-                message: format!("missing required key `{key}` ({what})"),
-            }
-        })
-    }
-
-    /// An integer key in `range` (default `default`).
-    fn integer(
-        &self,
-        key: &str,
-        default: u32,
-        range: std::ops::RangeInclusive<u32>,
-    ) -> Result<u32> {
-        let Some(v) = self.number(key) else {
-            return Ok(default);
-        };
-        if v.fract() != 0.0 || v < f64::from(*range.start()) || v > f64::from(*range.end()) {
-            return Err(self.error(
-                key,
-                format!(
-                    "{v}: must be an integer in {}..={}",
-                    range.start(),
-                    range.end()
-                ),
-            ));
-        }
-        Ok(v as u32)
-    }
-
-    /// Exactly one of `a` and `b`.
-    fn one_of(&self, a: &str, b: &str) -> Result<()> {
-        match (self.found.contains_key(a), self.found.contains_key(b)) {
-            (true, true) => Err(self.error(b, format!("give either `{a}` or `{b}`, not both"))),
-            (false, false) => Err(Error::File {
-                path: self.path.to_path_buf(),
-                message: format!("missing required key: give `{a}` or `{b}`"),
-            }),
-            _ => Ok(()),
-        }
-    }
-
-    /// The file `key` names, relative to the sensor file's folder, read by `read`.
-    fn file<T>(&mut self, key: &str, read: impl FnOnce(&Path) -> Result<T>) -> Result<Option<T>> {
-        let Some(name) = self.text(key).map(str::to_string) else {
-            return Ok(None);
-        };
-        if name.is_empty() {
-            return Err(self.error(key, "expected the path of a file, got an empty string"));
-        }
-        let file = match self.path.parent().filter(|p| !p.as_os_str().is_empty()) {
-            Some(dir) if Path::new(&name).is_relative() => dir.join(&name),
-            _ => PathBuf::from(&name),
-        };
-        self.files.push(file.clone());
-        read(&file)
-            .map(Some)
-            .map_err(|e| self.error(key, e.to_string()))
+/// Exactly one of `a` and `b`.
+fn one_of(doc: &TomlDoc<'_>, a: &str, b: &str) -> Result<()> {
+    match (doc.has(a), doc.has(b)) {
+        (true, true) => Err(doc.error(b, format!("give either `{a}` or `{b}`, not both"))),
+        (false, false) => Err(doc.file_error(format!("missing required key: give `{a}` or `{b}`"))),
+        _ => Ok(()),
     }
 }
 
@@ -347,84 +265,20 @@ impl Doc<'_> {
 /// type, an invalid value, two keys that exclude each other, or a file it names that cannot be
 /// read; [`Error::File`] for a missing required key.
 pub fn parse_sensor(text: &str, path: &Path) -> Result<SensorFile> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let text = &*crate::csv_io::lone_cr_to_lf(text);
-    let table: BTreeMap<Spanned<String>, Spanned<Value>> =
-        toml::from_str(text).map_err(|e| Error::Syntax {
-            path: path.to_path_buf(),
-            line: e.span().map_or(1, |s| line_of(text, s.start)),
-            message: if toml::from_str::<toml::Table>(text).is_ok() {
-                "dotted keys (`a.b = …`) and tables are not allowed in a sensor file: every key \
-                 is a plain name (`f_number = 2.8`)"
-                    .into()
-            } else {
-                toml_message(&e, text)
-            },
-        })?;
-    let mut doc = Doc {
-        path,
-        found: BTreeMap::new(),
-        files: Vec::new(),
-    };
-    for (key, value) in table {
-        let line = line_of(text, key.span().start);
-        let name = key.get_ref().as_str();
-        if matches!(value.get_ref(), Value::Table(_)) {
-            return Err(Error::Field {
-                path: path.to_path_buf(),
-                line,
-                field: short_name(name),
-                message: "tables are not allowed in a sensor file: every key is a plain name \
-                          (`f_number = 2.8`)"
-                    .into(),
-            });
-        }
-        let Some(k) = KEYS.iter().find(|k| k.0 == name) else {
-            let known: Vec<&str> = KEYS.iter().map(|k| k.0).collect();
-            return Err(Error::Field {
-                path: path.to_path_buf(),
-                line,
-                field: short_name(name),
-                message: format!("unknown key (known keys: {})", known.join(", ")),
-            });
-        };
-        let v = value.into_inner();
-        let ok = match (k.1, &v) {
-            (Kind::Number, Value::Float(_) | Value::Integer(_)) => true,
-            (Kind::Text, Value::String(_)) => true,
-            (Kind::Numbers, Value::Array(a)) => a
-                .iter()
-                .all(|x| matches!(x, Value::Float(_) | Value::Integer(_))),
-            _ => false,
-        };
-        if !ok {
-            let want = match k.1 {
-                Kind::Number => "a number",
-                Kind::Numbers => "an array of numbers",
-                Kind::Text => "a string",
-            };
-            return Err(Error::Field {
-                path: path.to_path_buf(),
-                line,
-                field: k.0.to_string(),
-                message: format!("expected {want} ({}), got {}", k.3, v.type_str()),
-            });
-        }
-        doc.found.insert(k.0, (line, v));
-    }
-    let spec = spec(&mut doc)?;
+    let doc = TomlDoc::parse(text, path, FORMAT)?;
+    let spec = spec(&doc)?;
     let (sensor, spectrum) = spec.sensor().map_err(|e| core_error(&doc, e))?;
     Ok(SensorFile {
         path: path.to_path_buf(),
         spec,
         sensor,
         spectrum,
-        files: doc.files,
+        files: doc.files(),
     })
 }
 
 /// A core error at the line of the key that gives the parameter it names.
-fn core_error(doc: &Doc<'_>, e: polbrdf::Error) -> Error {
+fn core_error(doc: &TomlDoc<'_>, e: polbrdf::Error) -> Error {
     let name = match &e {
         polbrdf::Error::InvalidParameter { name, .. }
         | polbrdf::Error::InvalidParameterAt { name, .. } => Some(*name),
@@ -442,64 +296,47 @@ fn core_error(doc: &Doc<'_>, e: polbrdf::Error) -> Error {
             .find(|c| c.0 == n)
             .map_or(Some(n), |c| Some(c.1))
     });
-    match key.filter(|k| doc.found.contains_key(k)) {
+    match key.filter(|k| doc.has(k)) {
         Some(k) => doc.error(k, e.to_string()),
-        None => Error::File {
-            path: doc.path.to_path_buf(),
-            message: e.to_string(),
-        },
+        None => doc.file_error(e.to_string()),
     }
 }
 
 /// The spec of the keys found.
-fn spec(doc: &mut Doc<'_>) -> Result<SensorSpec> {
+fn spec(doc: &TomlDoc<'_>) -> Result<SensorSpec> {
+    let models = || names::quoted(&Model::ALL, Model::name);
     let model = match doc.text("noise_model") {
-        Some("photon-counting") => Model::Photon,
-        Some("nel") => Model::Nel,
-        Some(other) => {
-            return Err(doc.error(
+        Some(name) => names::find(&Model::ALL, Model::name, name).ok_or_else(|| {
+            doc.error(
                 "noise_model",
-                format!("unknown noise model {other:?} (known: \"photon-counting\", \"nel\")"),
-            ))
-        }
+                format!("unknown noise model {name:?} (known: {})", models()),
+            )
+        })?,
         None => {
-            return Err(Error::File {
-                path: doc.path.to_path_buf(),
-                message: "missing required key `noise_model` (\"photon-counting\" or \"nel\")"
-                    .into(),
-            })
+            return Err(doc.file_error(format!("missing required key `noise_model` ({})", models())))
         }
     };
-    if let Some(k) = KEYS
-        .iter()
-        .find(|k| k.2 != Model::Any && k.2 != model && doc.found.contains_key(k.0))
-    {
-        let other = if k.2 == Model::Photon {
-            "photon-counting"
-        } else {
-            "nel"
-        };
+    if let Some(k) = MODEL_KEYS.iter().find(|k| k.1 != model && doc.has(k.0)) {
         return Err(doc.error(
             k.0,
             format!(
-                "belongs to noise_model = \"{other}\", not to noise_model = \"{}\"",
-                if model == Model::Photon {
-                    "photon-counting"
-                } else {
-                    "nel"
-                }
+                "belongs to noise_model = \"{}\", not to noise_model = \"{}\"",
+                k.1.name(),
+                model.name()
             ),
         ));
     }
-    let layout = match doc.text("layout").unwrap_or("dofp") {
-        "dofp" => Layout::Dofp,
-        "per-pixel" => Layout::PerPixel,
-        other => {
-            return Err(doc.error(
+    let layout = match doc.text("layout") {
+        None => Layout::ALL[0],
+        Some(name) => Layout::parse(name).ok_or_else(|| {
+            doc.error(
                 "layout",
-                format!("unknown layout {other:?} (known: \"dofp\", \"per-pixel\")"),
-            ))
-        }
+                format!(
+                    "unknown layout {name:?} (known: {})",
+                    names::quoted(&Layout::ALL, Layout::as_str)
+                ),
+            )
+        })?,
     };
     let analyzer = analyzer(doc)?;
     let band = band(doc)?;
@@ -509,7 +346,7 @@ fn spec(doc: &mut Doc<'_>) -> Result<SensorSpec> {
     };
     let name = doc.text("name").map_or_else(
         || {
-            doc.path
+            doc.path()
                 .file_stem()
                 .map_or_else(|| "sensor".into(), |s| s.to_string_lossy().into_owned())
         },
@@ -519,9 +356,10 @@ fn spec(doc: &mut Doc<'_>) -> Result<SensorSpec> {
         name,
         analyzer,
         layout,
-        pixel_pitch_m: doc.required("pixel_pitch_um")? * 1e-6,
-        focal_length_m: doc.required("focal_length_mm")? * 1e-3,
-        frames: doc.integer(
+        pixel_pitch_m: required(doc, "pixel_pitch_um")? * 1e-6,
+        focal_length_m: required(doc, "focal_length_mm")? * 1e-3,
+        frames: integer(
+            doc,
             "frames",
             1,
             1..=polbrdf::analysis::detection::noise::MAX_FRAMES,
@@ -531,49 +369,44 @@ fn spec(doc: &mut Doc<'_>) -> Result<SensorSpec> {
     })
 }
 
-fn analyzer(doc: &Doc<'_>) -> Result<Analyzer> {
-    let angles: Vec<f64> = match doc.found.get("analyzer_angles_deg") {
-        Some((_, Value::Array(a))) => a
-            .iter()
-            .map(|v| match v {
-                Value::Float(x) => x.to_radians(),
-                Value::Integer(i) => (*i as f64).to_radians(),
-                _ => f64::NAN,
-            })
-            .collect(),
-        _ => [0.0f64, 45.0, 90.0, 135.0].map(f64::to_radians).to_vec(),
+fn analyzer(doc: &TomlDoc<'_>) -> Result<Analyzer> {
+    let angles: Vec<f64> = match doc.numbers("analyzer_angles_deg") {
+        Some(a) => a.into_iter().map(f64::to_radians).collect(),
+        None => [0.0f64, 45.0, 90.0, 135.0].map(f64::to_radians).to_vec(),
     };
     let q = doc.number("q").unwrap_or(1.0);
     let roll = doc.number("roll_deg").unwrap_or(0.0).to_radians();
-    doc.one_of("r", "extinction_ratio")?;
+    one_of(doc, "r", "extinction_ratio")?;
     let built = match doc.number("r") {
         Some(r) => Analyzer::new(angles, q, r, roll),
-        None => Analyzer::with_extinction_ratio(angles, q, doc.required("extinction_ratio")?, roll),
+        None => {
+            Analyzer::with_extinction_ratio(angles, q, required(doc, "extinction_ratio")?, roll)
+        }
     };
     built.map_err(|e| core_error(doc, e))
 }
 
-fn band(doc: &mut Doc<'_>) -> Result<Band> {
-    if doc.found.contains_key("band_response") {
+fn band(doc: &TomlDoc<'_>) -> Result<Band> {
+    if doc.has("band_response") {
         for k in ["band_lo_um", "band_hi_um"] {
-            if doc.found.contains_key(k) {
+            if doc.has(k) {
                 return Err(doc.error(
                     k,
                     "give either `band_response` or `band_lo_um` and `band_hi_um`, not both",
                 ));
             }
         }
-        return Ok(doc.file("band_response", read_band_csv)?.expect("present"));
+        return Ok(doc
+            .read_file("band_response", read_band_csv)?
+            .expect("present"));
     }
     let (lo, hi) = match (doc.number("band_lo_um"), doc.number("band_hi_um")) {
         (Some(lo), Some(hi)) => (lo, hi),
         _ => {
-            return Err(Error::File {
-                path: doc.path.to_path_buf(),
-                message: "missing the band: give `band_response` (a band CSV file) or \
-                          `band_lo_um` and `band_hi_um` (a flat band, µm)"
-                    .into(),
-            })
+            return Err(doc.file_error(
+                "missing the band: give `band_response` (a band CSV file) or `band_lo_um` and \
+                 `band_hi_um` (a flat band, µm)",
+            ))
         }
     };
     if !(lo.is_finite() && lo > 0.0) {
@@ -588,40 +421,40 @@ fn band(doc: &mut Doc<'_>) -> Result<Band> {
     Band::new("flat band", vec![lo, hi], vec![1.0, 1.0]).map_err(|e| core_error(doc, e))
 }
 
-fn photon(doc: &mut Doc<'_>) -> Result<NoiseSpec> {
-    doc.one_of("quantum_efficiency", "quantum_efficiency_file")?;
+fn photon(doc: &TomlDoc<'_>) -> Result<NoiseSpec> {
+    one_of(doc, "quantum_efficiency", "quantum_efficiency_file")?;
     let quantum_efficiency = match doc.number("quantum_efficiency") {
         Some(q) if q > 0.0 && q <= 1.0 => QuantumEfficiency::Constant(q),
         Some(q) => return Err(doc.error("quantum_efficiency", format!("{q}: must lie in (0, 1]"))),
         None => doc
-            .file("quantum_efficiency_file", read_qe_csv)?
+            .read_file("quantum_efficiency_file", read_qe_csv)?
             .expect("one of the two"),
     };
     Ok(NoiseSpec::PhotonCounting {
-        integration_time_s: doc.required("integration_time_ms")? * 1e-3,
-        f_number: doc.required("f_number")?,
+        integration_time_s: required(doc, "integration_time_ms")? * 1e-3,
+        f_number: required(doc, "f_number")?,
         optics_transmittance: doc.number("optics_transmittance").unwrap_or(1.0),
         quantum_efficiency,
         dark_current_e_per_s: doc.number("dark_current_e_per_s").unwrap_or(0.0),
-        read_noise_e: doc.required("read_noise_e")?,
+        read_noise_e: required(doc, "read_noise_e")?,
         adc_bits: {
-            doc.required("adc_bits")?;
-            doc.integer("adc_bits", 1, 1..=32)?
+            required(doc, "adc_bits")?;
+            integer(doc, "adc_bits", 1, 1..=32)?
         },
-        full_well_e: doc.required("full_well_e")?,
+        full_well_e: required(doc, "full_well_e")?,
     })
 }
 
-fn nel(doc: &Doc<'_>) -> Result<NoiseSpec> {
-    doc.one_of("nel_w_per_m2_sr", "netd_mk")?;
+fn nel(doc: &TomlDoc<'_>) -> Result<NoiseSpec> {
+    one_of(doc, "nel_w_per_m2_sr", "netd_mk")?;
     if let Some(nel) = doc.number("nel_w_per_m2_sr") {
-        if doc.found.contains_key("netd_reference_k") {
+        if doc.has("netd_reference_k") {
             return Err(doc.error("netd_reference_k", "only with `netd_mk`"));
         }
         return Ok(NoiseSpec::Nel(nel));
     }
     Ok(NoiseSpec::Netd {
-        netd_k: doc.required("netd_mk")? * 1e-3,
+        netd_k: required(doc, "netd_mk")? * 1e-3,
         reference_temperature_k: doc.number("netd_reference_k").unwrap_or(300.0),
     })
 }

@@ -1234,7 +1234,7 @@ fn cases() -> Vec<Case> {
             "a dotted key",
             b"wavelength_um = 10\nsky.model = \"uniform\"\n",
             Some(2),
-            None,
+            Some("sky.model"),
             &["dotted keys", "not supported", "[table]"],
         ),
         case(

@@ -7,6 +7,7 @@ use crate::spectrum::spectrum_json;
 use polbrdf::analysis::contrast::{ContrastSample, Illumination};
 use polbrdf::analysis::SkyModel;
 use polbrdf::Spectrum;
+use polbrdf_io::scene::SkyKind;
 use polbrdf_io::Scene;
 use serde_json::{json, Value};
 
@@ -126,25 +127,26 @@ fn scene_json(doc: &mut Value, s: &Scene, nulls: Option<&NullLoci>, azimuth_inde
 
 /// A scene's sky as JSON: its model and its parameters, as the scene file names them.
 pub fn sky_json(sky: &SkyModel) -> Value {
-    match sky {
-        SkyModel::None => json!({"model": "none"}),
-        SkyModel::Uniform { radiance } => json!({"model": "uniform", "radiance": num(*radiance)}),
-        SkyModel::Thermal { temperature_k } => {
-            json!({"model": "thermal", "temperature_k": num(*temperature_k)})
-        }
+    let mut v = match sky {
+        SkyModel::None => json!({}),
+        SkyModel::Uniform { radiance } => json!({"radiance": num(*radiance)}),
+        SkyModel::Thermal { temperature_k } => json!({"temperature_k": num(*temperature_k)}),
         SkyModel::Profile(p) => {
             let (z, l) = p.table();
-            json!({"model": "profile", "zenith_deg": z, "radiance": l})
+            json!({"zenith_deg": z, "radiance": l})
         }
         SkyModel::ClearSky {
             irradiance,
             dop_max,
-        } => {
-            json!({"model": "cie-clear", "irradiance": num(*irradiance), "dop_max": num(*dop_max)})
-        }
+        } => json!({"irradiance": num(*irradiance), "dop_max": num(*dop_max)}),
         SkyModel::Table(t) => {
             let (z, p) = t.grid();
-            json!({"model": "table", "theta_deg": z, "phi_deg": p})
+            json!({"theta_deg": z, "phi_deg": p})
         }
-    }
+    };
+    // The model's name first (the scene file's, `polbrdf_io::scene::SkyKind::name`).
+    let mut out = serde_json::Map::new();
+    out.insert("model".into(), json!(SkyKind::of(sky).name()));
+    out.append(v.as_object_mut().expect("an object"));
+    Value::Object(out)
 }

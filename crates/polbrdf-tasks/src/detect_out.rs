@@ -7,6 +7,7 @@ use crate::detect_unc::RangeUncertainty;
 use crate::fit_covariance::FitCovariance;
 use crate::hemisphere::deg;
 use polbrdf::analysis::detection::{estimate, Detection, MaxRange, NoiseModel, Path};
+use polbrdf_io::sensor::Model;
 use serde_json::{json, Value};
 
 /// The columns of `detect.csv`: the numeric ones ([`NUMERIC`] of them, the values of a
@@ -226,10 +227,10 @@ impl DetectStudy {
         let ranked: Vec<Value> = self.ranked().into_iter().map(&mut entry).collect();
         let c = &self.detector.criteria;
         let noise = match self.detector.sensor.noise {
-            NoiseModel::PhotonCounting(p) => json!({"model": "photon-counting",
+            NoiseModel::PhotonCounting(p) => json!({"model": Model::Photon.name(),
                 "electrons_per_radiance": num(p.electrons_per_radiance()),
                 "gain_e_per_count": num(p.gain_e_per_count)}),
-            NoiseModel::Nel { nel } => json!({"model": "nel", "nel": num(nel)}),
+            NoiseModel::Nel { nel } => json!({"model": Model::Nel.name(), "nel": num(nel)}),
         };
         json!({
             "best": ranked.first().cloned(),

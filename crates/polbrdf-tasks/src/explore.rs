@@ -38,7 +38,7 @@ impl MuellerMap {
             .iter()
             .map(|s| s.to_string())
             .collect();
-        c.extend((0..16).map(|e| format!("m{}{}", e / 4, e % 4)));
+        c.extend(Mueller::COLUMNS.map(String::from));
         c
     }
 

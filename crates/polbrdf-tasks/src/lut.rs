@@ -34,13 +34,7 @@ pub fn columns(quantities: &[Quantity]) -> Vec<String> {
     let mut out = Vec::new();
     for q in quantities {
         match q {
-            Quantity::Mueller => {
-                for i in 0..4 {
-                    for j in 0..4 {
-                        out.push(format!("m{i}{j}"));
-                    }
-                }
-            }
+            Quantity::Mueller => out.extend(polbrdf::Mueller::COLUMNS.map(String::from)),
             Quantity::Brdf => out.push("brdf".into()),
             Quantity::Dolp => out.push("dolp".into()),
             Quantity::Aolp => out.push("aolp_deg".into()),

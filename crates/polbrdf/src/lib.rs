@@ -38,6 +38,7 @@ pub mod engine;
 pub mod error;
 pub mod geometry;
 pub mod model;
+pub mod names;
 pub mod numeric;
 pub mod optics;
 

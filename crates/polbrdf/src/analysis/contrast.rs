@@ -408,13 +408,7 @@ impl Ranking {
 impl std::str::FromStr for Ranking {
     type Err = String;
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        match s {
-            "delta-dolp" => Ok(Ranking::DeltaDolp),
-            "polarization-contrast" => Ok(Ranking::PolarizationContrast),
-            other => Err(format!(
-                "expected \"delta-dolp\" or \"polarization-contrast\", got {other:?}"
-            )),
-        }
+        crate::names::parse(&Self::ALL, |r| r.as_str(), s)
     }
 }
 

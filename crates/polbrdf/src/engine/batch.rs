@@ -162,13 +162,20 @@ impl std::str::FromStr for Precision {
 
     /// `float64`/`f64` or `float32`/`f32`.
     fn from_str(s: &str) -> Result<Self> {
-        match s {
-            "float64" | "f64" => Ok(Precision::F64),
-            "float32" | "f32" => Ok(Precision::F32),
-            _ => Err(crate::Error::InconsistentParameters(format!(
-                "unknown precision {s:?}: expected \"float64\" or \"float32\""
-            ))),
-        }
+        // Rust's names `f64`, `f32` are accepted besides NumPy's.
+        let alias = match s {
+            "f64" => Some(Precision::F64),
+            "f32" => Some(Precision::F32),
+            _ => None,
+        };
+        alias
+            .or_else(|| crate::names::find(&Self::ALL, Precision::name, s))
+            .ok_or_else(|| {
+                crate::Error::InconsistentParameters(format!(
+                    "unknown precision {s:?}: expected {}",
+                    crate::names::quoted(&Self::ALL, Precision::name)
+                ))
+            })
     }
 }
 

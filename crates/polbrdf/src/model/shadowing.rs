@@ -31,11 +31,7 @@ impl AzimuthTerm {
 impl std::str::FromStr for AzimuthTerm {
     type Err = String;
     fn from_str(s: &str) -> std::result::Result<Self, String> {
-        match s {
-            "none" => Ok(AzimuthTerm::None),
-            "eq3" => Ok(AzimuthTerm::Eq3),
-            other => Err(format!("expected \"none\" or \"eq3\", got {other:?}")),
-        }
+        crate::names::parse(&Self::ALL, |a| a.as_str(), s)
     }
 }
 

@@ -36,11 +36,7 @@ impl Form {
 impl std::str::FromStr for Form {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "standard" => Ok(Form::Standard),
-            "paper" => Ok(Form::Paper),
-            other => Err(format!("expected \"standard\" or \"paper\", got {other:?}")),
-        }
+        crate::names::parse(&Self::ALL, |f| f.as_str(), s)
     }
 }
 

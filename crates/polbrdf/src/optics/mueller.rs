@@ -12,12 +12,32 @@ use crate::optics::stokes::Stokes;
 use num_complex::Complex64;
 use std::ops::{Add, Index, IndexMut, Mul};
 
+/// The names of the 16 entries in row-major order, `m00 … m33` (`mIJ`: row `I`, column `J`):
+/// the one list of the Mueller column names of every file and table (result CSV, measurement
+/// CSV, lookup tables, fit quantities, the explorer's maps, the Python module).
+pub const COLUMNS: [&str; 16] = [
+    "m00", "m01", "m02", "m03", "m10", "m11", "m12", "m13", "m20", "m21", "m22", "m23", "m30",
+    "m31", "m32", "m33",
+];
+
 /// A real 4×4 Mueller matrix (or pBRDF, in sr⁻¹), row-major, psps basis. `m[(i, j)]` is the
 /// entry of row `i` (output component `S_i`) and column `j` (input component `S_j`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mueller(pub [[f64; 4]; 4]);
 
 impl Mueller {
+    /// The names of the entries, row-major ([`COLUMNS`]).
+    pub const COLUMNS: [&str; 16] = COLUMNS;
+
+    /// The row and column of the entry named `name` (`"m12"` → `(1, 2)`), or `None` for a
+    /// name not in [`COLUMNS`].
+    pub fn entry_of(name: &str) -> Option<(usize, usize)> {
+        COLUMNS
+            .iter()
+            .position(|c| *c == name)
+            .map(|k| (k / 4, k % 4))
+    }
+
     /// The zero matrix (what the model returns for directions at or below the horizon).
     pub fn zero() -> Self {
         Self([[0.0; 4]; 4])
@@ -338,4 +358,21 @@ pub fn facet_pbrdf<M: Math>(gm: [M::F; 4], fv: M::F, rot: [M::F; 4]) -> [M::F; 1
         -(gs * ci2),
         gc,
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_column_names_are_row_major_and_name_their_entries() {
+        for (k, name) in COLUMNS.iter().enumerate() {
+            let (i, j) = (k / 4, k % 4);
+            assert_eq!(*name, format!("m{i}{j}"));
+            assert_eq!(Mueller::entry_of(name), Some((i, j)));
+        }
+        for bad in ["m44", "m4", "m000", "M00", "m0x", ""] {
+            assert_eq!(Mueller::entry_of(bad), None, "{bad}");
+        }
+    }
 }

@@ -96,7 +96,7 @@ impl Feature {
 
     /// The feature named `name` ([`Feature::as_str`]).
     pub fn parse(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|f| f.as_str() == name)
+        crate::names::find(&Self::ALL, Self::as_str, name)
     }
 }
 

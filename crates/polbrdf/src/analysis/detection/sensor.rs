@@ -19,6 +19,14 @@ pub enum Layout {
 }
 
 impl Layout {
+    /// Every layout, the default first.
+    pub const ALL: [Layout; 2] = [Layout::Dofp, Layout::PerPixel];
+
+    /// The layout named `name` ([`Layout::as_str`]).
+    pub fn parse(name: &str) -> Option<Self> {
+        crate::names::find(&Self::ALL, Self::as_str, name)
+    }
+
     /// Its name in sensor files: `dofp`, `per-pixel`.
     pub fn as_str(self) -> &'static str {
         match self {
