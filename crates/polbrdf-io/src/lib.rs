@@ -25,6 +25,7 @@ pub mod table;
 pub mod tensorfile;
 pub mod units;
 pub mod write;
+pub mod write_set;
 
 pub use csv_io::{
     parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_sky_table_csv,
@@ -43,6 +44,5 @@ pub use scene::{parse_scene, read_scene, read_scene_keys, Scene, SceneObject, Sc
 pub use sensor::{parse_sensor, read_sensor, SensorFile};
 pub use tensorfile::TensorFile;
 pub use units::{material_warnings, AngleScan, UnitWarning};
-pub use write::{
-    check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,
-};
+pub use write::{check_distinct, install_signal_cleanup, write_atomic, Output, Target};
+pub use write_set::{write_files, StagingDir};
