@@ -5,6 +5,7 @@
 
 use crate::error::CliError;
 use crate::output::{write_all, OutputFile};
+use crate::values::{self, GridDeg, Pair, Range};
 use polbrdf_plot::{render_files, Figure, LegendAt, Line, Panel, Render, PALETTE};
 use polbrdf_tasks::contrast::RankRequest;
 use polbrdf_tasks::daytime::{
@@ -38,7 +39,8 @@ pub struct Args {
     #[arg(long, value_name = "HH:MM", default_value = "18:00")]
     pub to: String,
     /// Minutes between two times.
-    #[arg(long, value_name = "MIN", default_value_t = 30.0)]
+    #[arg(long, value_name = "MIN", default_value_t = 30.0,
+          value_parser = values::number(Range::closed(1.0 / 60.0, f64::MAX)))]
     pub step_min: f64,
     /// Listed local times (HH:MM, comma separated) instead of --from/--to/--step-min.
     #[arg(long, value_name = "HH:MM", value_delimiter = ',', conflicts_with_all = ["from", "to", "step_min"])]
@@ -46,26 +48,27 @@ pub struct Args {
     /// Grid steps DTHETA,DPHI in degrees (or one value for both) of every time's study.
     /// Default 5,10.
     #[arg(long, value_name = "DTHETA,DPHI")]
-    pub grid_deg: Option<String>,
+    pub grid_deg: Option<GridDeg>,
     /// The fixed view THETA,PHI in degrees. Default 0,0 (nadir).
     #[arg(
         long,
         value_name = "THETA,PHI",
         allow_hyphen_values = true,
-        default_value = "0,0"
+        default_value = "0,0",
+        value_parser = values::pair(Range::ZENITH, Range::AZIMUTH, "THETA,PHI in degrees")
     )]
-    pub fixed_view_deg: String,
+    pub fixed_view_deg: Pair,
     /// The target's area, m² (with --sensor).
-    #[arg(long, value_name = "M2")]
+    #[arg(long, value_name = "M2", value_parser = values::positive())]
     pub area_m2: Option<f64>,
     /// False-alarm probability (with --sensor).
-    #[arg(long)]
+    #[arg(long, value_parser = values::probability())]
     pub pfa: Option<f64>,
     /// Required probability of detection (with --sensor).
-    #[arg(long)]
+    #[arg(long, value_parser = values::probability())]
     pub pd: Option<f64>,
     /// Largest range searched, m (with --sensor).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = values::positive())]
     pub range_limit_m: Option<f64>,
     /// Output directory (created; files replaced atomically).
     #[arg(long, value_name = "DIR", default_value = "daytime-out")]
@@ -75,7 +78,7 @@ pub struct Args {
 /// The task's request from the command line.
 fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
     let times = if args.times.is_empty() {
-        time_range(&args.from, &args.to, args.step_min)?
+        time_range(&args.from, &args.to, args.step_min).map_err(CliError::usage)?
     } else {
         args.times.clone()
     };
@@ -111,49 +114,16 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
         background: args.background.clone(),
         date: args.date.clone(),
         times,
-        grid_deg: match &args.grid_deg {
-            None => DAYTIME_GRID_DEG,
-            Some(text) => match pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
-                [a] => (a, a),
-                [a, b] => (a, b),
-                _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
-            },
-        },
+        grid_deg: args.grid_deg.map_or(DAYTIME_GRID_DEG, |g| g.0),
         // The best view is the best grid node: refining it costs a sky integral per trial
         // view under a clear sky, at every time.
         rank: RankRequest {
             refine: false,
             ..RankRequest::default()
         },
-        fixed_view_deg: match pair(&args.fixed_view_deg, "--fixed-view-deg", "THETA,PHI")?[..] {
-            [a, b] => (a, b),
-            _ => {
-                return Err(invalid_pair(
-                    &args.fixed_view_deg,
-                    "--fixed-view-deg",
-                    "THETA,PHI",
-                ))
-            }
-        },
+        fixed_view_deg: (args.fixed_view_deg.0, args.fixed_view_deg.1),
         detect,
     })
-}
-
-/// Comma-separated numbers of `option`.
-fn pair(text: &str, option: &str, what: &str) -> Result<Vec<f64>, CliError> {
-    text.split(',')
-        .map(|t| {
-            t.trim().parse::<f64>().map_err(|_| {
-                CliError::Invalid(format!(
-                    "{option} {text:?}: {t:?} is not a number (expected {what})"
-                ))
-            })
-        })
-        .collect()
-}
-
-fn invalid_pair(text: &str, option: &str, what: &str) -> CliError {
-    CliError::Invalid(format!("{option} {text:?}: expected {what} in degrees"))
 }
 
 /// One line of the figure: column `name` against local time, finite points only.

@@ -5,6 +5,7 @@
 use crate::error::CliError;
 use crate::figures::{polar_grid, render_all, short, single};
 use crate::output::{write_all, OutputFile};
+use crate::values::{self, GridDeg, Pair, Range};
 use polbrdf::analysis::detection::Feature;
 use polbrdf_plot::{ColorScale, Colormap, PolarPanel};
 use polbrdf_tasks::detect::{detect, DetectRequest, DetectStudy, SceneSource, SensorSource, Views};
@@ -27,13 +28,14 @@ pub struct Args {
     pub background: Option<String>,
     /// Grid steps over the hemisphere, DTHETA or DTHETA,DPHI in degrees (default 1,2).
     #[arg(long, value_name = "DTHETA[,DPHI]", conflicts_with_all = ["theta_deg", "phi_deg"])]
-    pub grid_deg: Option<String>,
+    pub grid_deg: Option<GridDeg>,
     /// Listed view zenith angle(s), degrees; with --phi-deg, every combination (no maps).
     #[arg(
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::zenith()
     )]
     pub theta_deg: Vec<f64>,
     /// Listed view azimuth(s), degrees (default 0).
@@ -41,7 +43,8 @@ pub struct Args {
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::azimuth()
     )]
     pub phi_deg: Vec<f64>,
     /// Ranges (m) at which every view is evaluated (rows of detect.csv; the P_d map is at the
@@ -50,7 +53,8 @@ pub struct Args {
         long,
         value_name = "M",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::positive()
     )]
     pub ranges_m: Vec<f64>,
     /// Do not search each view's detection range.
@@ -61,7 +65,8 @@ pub struct Args {
         long,
         value_name = "M",
         default_value_t = 10_000.0,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::positive()
     )]
     pub range_limit_m: f64,
     /// The target's area, m² (a flat patch).
@@ -69,7 +74,8 @@ pub struct Args {
         long,
         value_name = "M2",
         default_value_t = 1.0,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::positive()
     )]
     pub area_m2: f64,
     /// False-alarm probability.
@@ -77,7 +83,8 @@ pub struct Args {
         long,
         value_name = "P",
         default_value_t = 1e-6,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::probability()
     )]
     pub pfa: f64,
     /// Required probability of detection.
@@ -85,7 +92,8 @@ pub struct Args {
         long,
         value_name = "P",
         default_value_t = 0.9,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::probability()
     )]
     pub pd: f64,
     /// Features the detector may use (s0, dolp, s0+dolp).
@@ -93,12 +101,14 @@ pub struct Args {
         long,
         value_name = "LIST",
         value_delimiter = ',',
-        default_value = "s0,dolp,s0+dolp"
+        default_value = "s0,dolp,s0+dolp",
+        value_parser = ["s0", "dolp", "s0+dolp"]
     )]
     pub features: Vec<String>,
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
-    #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
-    pub sun_deg: Option<String>,
+    #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true,
+          value_parser = values::pair(Range::ZENITH, Range::AZIMUTH, "ZENITH,AZIMUTH in degrees"))]
+    pub sun_deg: Option<Pair>,
     /// Also simulate the camera frame at the best view and the first range: frame.png/.svg
     /// and frame_*.npy (photon-counting DoFP sensors; docs/detection-frame.md).
     #[arg(long)]
@@ -111,28 +121,16 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// Comma-separated numbers of `option`, exactly `count` of them.
-fn pair(text: &str, option: &str) -> Result<(f64, f64), CliError> {
-    let v: Result<Vec<f64>, _> = text.split(',').map(|t| t.trim().parse::<f64>()).collect();
-    match v.as_deref() {
-        Ok([a, b]) => Ok((*a, *b)),
-        Ok([a]) if option == "--grid-deg" => Ok((*a, *a)),
-        _ => Err(CliError::Invalid(format!(
-            "{option} = {text:?}: expected two numbers separated by a comma"
-        ))),
-    }
-}
-
 impl Args {
     fn request(&self) -> Result<DetectRequest, CliError> {
         let views = if self.theta_deg.is_empty() {
             if !self.phi_deg.is_empty() {
                 return Err(CliError::Usage("--phi-deg needs --theta-deg".into()));
             }
-            Views::Grid(match &self.grid_deg {
-                Some(g) => pair(g, "--grid-deg")?,
-                None => polbrdf_tasks::hemisphere::DEFAULT_GRID_DEG,
-            })
+            Views::Grid(
+                self.grid_deg
+                    .map_or(polbrdf_tasks::hemisphere::DEFAULT_GRID_DEG, |g| g.0),
+            )
         } else {
             let phis = if self.phi_deg.is_empty() {
                 vec![0.0]
@@ -180,11 +178,7 @@ impl Args {
             pfa: self.pfa,
             pd: self.pd,
             features,
-            sun_deg: self
-                .sun_deg
-                .as_deref()
-                .map(|s| pair(s, "--sun-deg"))
-                .transpose()?,
+            sun_deg: self.sun_deg.map(|Pair(z, a)| (z, a)),
         })
     }
 }
