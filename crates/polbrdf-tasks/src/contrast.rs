@@ -334,9 +334,8 @@ pub fn contrast_with_progress(
 /// Blocks of a scene's map between two progress reports.
 const PROGRESS_BLOCKS: usize = 100;
 
-/// `problem.map(grid)`, a scene's in [`PROGRESS_BLOCKS`] blocks of directions with a progress
-/// report after each (every direction's sample is computed on its own, so the blocks give
-/// the same numbers).
+/// `problem.map(grid)`, a scene's in at most [`PROGRESS_BLOCKS`] blocks of whole zenith rows
+/// with a progress report after each (the blocks give the same numbers bit for bit: tested).
 fn map_with_progress(
     problem: &Contrast,
     setting: &Setting,
@@ -352,7 +351,10 @@ fn map_with_progress(
     let dirs: Vec<(f64, f64)> = (0..n).map(|i| grid.direction(i)).collect();
     let mut samples = Vec::with_capacity(n);
     progress(0, n);
-    for block in dirs.chunks(n.div_ceil(PROGRESS_BLOCKS).max(1)) {
+    // Whole zenith rows per block: a scene's sky integrals are shared along a row.
+    let row = grid.phis().len().max(1);
+    let rows = (n / row).div_ceil(PROGRESS_BLOCKS).max(1);
+    for block in dirs.chunks(rows * row) {
         samples.extend(problem.at_all_with(block, Quality::Map));
         progress(samples.len(), n);
     }
