@@ -10,7 +10,7 @@ repeats="${2:-3}"
 dir="$(mktemp -d)"
 trap 'rm -rf "$dir"' EXIT
 printf 'n = 1.5\nsigma_deg = 20\nrho_d = 0.02\nrho_v = 0.02\n' > "$dir/start.toml"
-/usr/bin/time -f "export: %e s, peak RSS %M KB" "$bin" export --material paint --grid 361,91,91 --out "$dir/big.pbsdf"
+/usr/bin/time -f "export: %e s, peak RSS %M KB" "$bin" export --material paint --grid 361,91,91 --output "$dir/big.pbsdf"
 ls -l "$dir/big.pbsdf"
 for sub in ${SUBSAMPLES:-auto 4}; do
     for r in $(seq "$repeats"); do

@@ -1,6 +1,6 @@
 """Render a polbrdf material in Mitsuba 3 through the stock `measured_polarized` plugin.
 
-    polbrdf export --material paint --out paint.pbsdf      # done by this script
+    polbrdf export --material paint --output paint.pbsdf     # done by this script
     python python/examples/mitsuba_pbsdf.py [--material paint] [--out docs/img/mitsuba_dolp.png]
 
 Needs the `polbrdf` binary (on PATH or in $POLBRDF_CLI) and `pip install mitsuba numpy`. A sphere
@@ -50,8 +50,8 @@ def render_stokes(table: Path | str, size: int = 160, spp: int = 32) -> np.ndarr
 
 
 def export(cli: str, material: str, table: Path) -> None:
-    """`polbrdf export --material <material> --out <table>`."""
-    subprocess.run([cli, "export", "--material", material, "--out", str(table)], check=True)
+    """`polbrdf export --material <material> --output <table>`."""
+    subprocess.run([cli, "export", "--material", material, "--output", str(table)], check=True)
 
 
 def main() -> None:

@@ -136,7 +136,7 @@ def test_band_emissivity_names_a_bad_keyword(kwargs: dict, argument: str) -> Non
 @needs_cli
 def test_export_read_and_fit_of_a_pbsdf_table_are_the_cli_s(tmp_path: Path) -> None:
     cli_table, py_table = tmp_path / "cli.pbsdf", tmp_path / "py.pbsdf"
-    run_cli("export", "--material", "paint", "--out", str(cli_table), "--grid", "9,7,8")
+    run_cli("export", "--material", "paint", "--output", str(cli_table), "--grid", "9,7,8")
     size = polbrdf.export_pbsdf(polbrdf.Material.preset("paint"), py_table, grid=(9, 7, 8))
     assert size == 9 * 7 * 8 * 5 * 64
     assert py_table.read_bytes() == cli_table.read_bytes()

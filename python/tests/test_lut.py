@@ -443,15 +443,23 @@ def test_cli_table_opens_as_the_python_table(tmp_path) -> None:
         assert isinstance(a, np.memmap), v
     # and it writes as any table does
     back.to_netcdf(tmp_path / "t.nc", engine="h5netcdf")
-    # an existing directory is refused, and left alone
+    # into an existing directory (as every command's --out DIR): the table's files replaced as a
+    # set, with the marker last, and no other file touched
+    (out / "notes.txt").write_text("keep")
+    table = (out / "table.npy").read_bytes()
     again = subprocess.run(
         [cli, "lut", "--config", str(tmp_path / "lut.toml"), "--out", str(out)],
         capture_output=True,
         text=True,
         check=False,
     )
-    assert again.returncode == 4 and "exists" in again.stderr
-    assert sorted(p.name for p in out.iterdir()) == ["attrs.json", "table.npy"]
+    assert again.returncode == 0, again.stderr
+    assert sorted(p.name for p in out.iterdir()) == [
+        "_COMPLETE", "attrs.json", "notes.txt", "table.npy"
+    ]
+    assert (out / "notes.txt").read_text() == "keep"
+    assert (out / "table.npy").read_bytes() == table
+    assert (out / "_COMPLETE").read_text() == "attrs.json\ntable.npy\n"
 
 
 def test_open_lut_refuses_what_is_no_table(tmp_path) -> None:

@@ -82,7 +82,7 @@ def exported(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("pbsdf") / "paint.pbsdf"
     assert CLI is not None
     subprocess.run(
-        [str(CLI), "export", "--material", "paint", "--out", str(out),
+        [str(CLI), "export", "--material", "paint", "--output", str(out),
          "--grid", ",".join(map(str, GRID))],
         check=True, capture_output=True,
     )

@@ -20,7 +20,8 @@ pub struct Args {
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = crate::values::zenith()
     )]
     pub theta_i_deg: Vec<f64>,
     /// Also write the table as CSV (theta_i_deg, albedo, surface, volume, exceeds_one).

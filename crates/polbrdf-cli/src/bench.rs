@@ -24,13 +24,15 @@ use std::time::Instant;
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Number of random geometries (θ uniform in [0°, 89.9°], φ uniform in [0°, 360°)).
-    #[arg(long, value_name = "N", default_value_t = 1_000_000)]
+    #[arg(long, value_name = "N", default_value_t = 1_000_000,
+          value_parser = crate::values::count(1, crate::limits::BENCH_COUNT))]
     pub count: usize,
     /// Threads of the parallel runs (default: every logical CPU).
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", value_parser = crate::values::count(1, crate::limits::THREADS))]
     pub threads: Option<usize>,
     /// Timed repeats of each measurement; the medians are reported (at least 5).
-    #[arg(long, value_name = "R", default_value_t = 7)]
+    #[arg(long, value_name = "R", default_value_t = 7,
+          value_parser = crate::values::count(5, crate::limits::BENCH_REPEATS))]
     pub repeats: usize,
     /// Print the results as one JSON object instead of a table.
     #[arg(long)]
@@ -692,23 +694,10 @@ fn latency_ns<T>(batch: &GeometryBatch<'_>, f: impl Fn(&Geometry) -> T) -> f64 {
 
 /// Runs `polbrdf bench`.
 pub fn run(args: &Args) -> Result<(), CliError> {
-    if args.count == 0 {
-        return Err(CliError::Invalid("--count must be at least 1".into()));
-    }
-    crate::limits::at_most("--count", args.count, crate::limits::BENCH_COUNT)?;
-    crate::limits::at_most("--repeats", args.repeats, crate::limits::BENCH_REPEATS)?;
-    if args.repeats < 5 {
-        return Err(CliError::Invalid(format!(
-            "--repeats = {}: at least 5 repeats are needed for a meaningful median",
-            args.repeats
-        )));
-    }
+    // --count, --repeats (at least 5, for a meaningful median) and --threads are in range
+    // (their value parsers); the default thread count is the machine's.
     let all = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let threads = args.threads.unwrap_or(all);
-    if threads == 0 {
-        return Err(CliError::Invalid("--threads must be at least 1".into()));
-    }
-    crate::limits::at_most("--threads", threads, crate::limits::THREADS)?;
+    let threads = args.threads.unwrap_or(all).min(crate::limits::THREADS);
     let material = polbrdf::preset("paint")
         .and_then(|s| s.build())
         .map_err(CliError::Model)?;

@@ -9,13 +9,14 @@ use crate::figures::{
     PANEL,
 };
 use crate::output::{csv, write_all, OutputFile};
+use crate::values::{self, Range};
 use crate::view::ViewArgs;
 use polbrdf::analysis::contrast::{ContrastSample, Ranking};
 use polbrdf_plot::{
     nice_ceil, ColorScale, Colormap, MarkShape, PolarFigure, PolarMark, PolarPanel,
 };
 use polbrdf_tasks::contrast::{
-    contrast, ContrastRequest, ContrastStudy, RankRequest, Setting, SourceRequest,
+    contrast_with_progress, ContrastRequest, ContrastStudy, RankRequest, Setting, SourceRequest,
 };
 use polbrdf_tasks::hemisphere::deg;
 use polbrdf_tasks::spectrum::describe;
@@ -47,14 +48,16 @@ pub struct Args {
           value_parser = closed_set::parser(&Ranking::ALL, |r| r.as_str()))]
     pub rank_by: Ranking,
     /// Number of best directions listed in best.json.
-    #[arg(long, value_name = "N", default_value_t = 10)]
+    #[arg(long, value_name = "N", default_value_t = 10,
+          value_parser = values::count(1, polbrdf_tasks::limits::TOP))]
     pub top: usize,
     /// Minimum angle between two listed directions, degrees.
     #[arg(
         long,
         value_name = "DEG",
         default_value_t = 10.0,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::number(Range::closed(0.0, 180.0))
     )]
     pub min_separation_deg: f64,
     /// Largest viewing zenith angle the ranking considers, degrees (the maps cover the whole
@@ -63,7 +66,8 @@ pub struct Args {
         long,
         value_name = "DEG",
         default_value_t = 80.0,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::number(Range::open(0.0, 90.0))
     )]
     pub max_zenith_deg: f64,
     /// Report the best grid nodes as they are, without the brute-force refinement around each.
@@ -105,7 +109,18 @@ impl Args {
 pub fn run(args: &Args) -> Result<(), CliError> {
     let request = args.request()?;
     let started = std::time::Instant::now();
-    let study = contrast(&request)?;
+    // A bar (on a terminal) for a scene, whose sky integrals take seconds; none under a
+    // collimated source, done in milliseconds.
+    let bar = args
+        .scene
+        .as_ref()
+        .map(|_| crate::progress::Progress::new(0, "contrast: viewing directions"));
+    let study = contrast_with_progress(&request, &mut |done, total| {
+        if let Some(bar) = &bar {
+            bar.set(done as u64, total as u64, None);
+        }
+    })?;
+    drop(bar);
     let elapsed = started.elapsed();
     for w in &study.warnings {
         crate::note!("polbrdf contrast: note: {w}");

@@ -5,6 +5,7 @@
 
 use crate::error::CliError;
 use crate::output::{write_all, OutputFile};
+use crate::values::{self, GridDeg, Pair, Range};
 use polbrdf_plot::{render_files, Figure, LegendAt, Line, Panel, Render, PALETTE};
 use polbrdf_tasks::daytime::{
     daytime, time_range, DaytimeDetect, DaytimeRequest, DaytimeStudy, DEFAULT_TIMES,
@@ -37,7 +38,8 @@ pub struct Args {
     #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.1)]
     pub to: String,
     /// Minutes between two times.
-    #[arg(long, value_name = "MIN", default_value_t = DEFAULT_TIMES.2)]
+    #[arg(long, value_name = "MIN", default_value_t = DEFAULT_TIMES.2,
+          value_parser = values::number(Range::closed(1.0 / 60.0, f64::MAX)))]
     pub step_min: f64,
     /// Listed local times (HH:MM, comma separated) instead of --from/--to/--step-min.
     #[arg(long, value_name = "HH:MM", value_delimiter = ',', conflicts_with_all = ["from", "to", "step_min"])]
@@ -45,21 +47,26 @@ pub struct Args {
     /// Grid steps DTHETA,DPHI in degrees (or one value for both) of every time's study.
     /// Default 5,10.
     #[arg(long, value_name = "DTHETA,DPHI")]
-    pub grid_deg: Option<String>,
+    pub grid_deg: Option<GridDeg>,
     /// The fixed view THETA,PHI in degrees. Default 0,0 (nadir).
-    #[arg(long, value_name = "THETA,PHI", allow_hyphen_values = true)]
-    pub fixed_view_deg: Option<String>,
+    #[arg(
+        long,
+        value_name = "THETA,PHI",
+        allow_hyphen_values = true,
+        value_parser = values::pair(Range::ZENITH, Range::AZIMUTH, "THETA,PHI in degrees")
+    )]
+    pub fixed_view_deg: Option<Pair>,
     /// The target's area, m² (with --sensor).
-    #[arg(long, value_name = "M2")]
+    #[arg(long, value_name = "M2", value_parser = values::positive())]
     pub area_m2: Option<f64>,
     /// False-alarm probability (with --sensor).
-    #[arg(long)]
+    #[arg(long, value_parser = values::probability())]
     pub pfa: Option<f64>,
     /// Required probability of detection (with --sensor).
-    #[arg(long)]
+    #[arg(long, value_parser = values::probability())]
     pub pd: Option<f64>,
     /// Largest range searched, m (with --sensor).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = values::positive())]
     pub range_limit_m: Option<f64>,
     /// Output directory (created; files replaced atomically).
     #[arg(long, value_name = "DIR", default_value = "daytime-out")]
@@ -69,7 +76,7 @@ pub struct Args {
 /// The task's request from the command line: [`DaytimeRequest::new`] with what was given.
 fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
     let times = if args.times.is_empty() {
-        time_range(&args.from, &args.to, args.step_min)?
+        time_range(&args.from, &args.to, args.step_min).map_err(CliError::usage)?
     } else {
         args.times.clone()
     };
@@ -99,37 +106,13 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
     r.target.clone_from(&args.target);
     r.background.clone_from(&args.background);
     r.date.clone_from(&args.date);
-    if let Some(text) = &args.grid_deg {
-        r.grid_deg = match pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
-            [a] => (a, a),
-            [a, b] => (a, b),
-            _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
-        };
+    if let Some(GridDeg(g)) = args.grid_deg {
+        r.grid_deg = g;
     }
-    if let Some(text) = &args.fixed_view_deg {
-        r.fixed_view_deg = match pair(text, "--fixed-view-deg", "THETA,PHI")?[..] {
-            [a, b] => (a, b),
-            _ => return Err(invalid_pair(text, "--fixed-view-deg", "THETA,PHI")),
-        };
+    if let Some(Pair(theta, phi)) = args.fixed_view_deg {
+        r.fixed_view_deg = (theta, phi);
     }
     Ok(r)
-}
-
-/// Comma-separated numbers of `option`.
-fn pair(text: &str, option: &str, what: &str) -> Result<Vec<f64>, CliError> {
-    text.split(',')
-        .map(|t| {
-            t.trim().parse::<f64>().map_err(|_| {
-                CliError::Invalid(format!(
-                    "{option} {text:?}: {t:?} is not a number (expected {what})"
-                ))
-            })
-        })
-        .collect()
-}
-
-fn invalid_pair(text: &str, option: &str, what: &str) -> CliError {
-    CliError::Invalid(format!("{option} {text:?}: expected {what} in degrees"))
 }
 
 /// One line of the figure: column `name` against local time, finite points only.

@@ -6,6 +6,7 @@ use crate::closed_set;
 use crate::error::CliError;
 use crate::figures::{polar_grid, render_all, short, single};
 use crate::output::{write_all, OutputFile};
+use crate::values::{self, GridDeg, Pair, Range};
 use polbrdf::analysis::detection::Feature;
 use polbrdf_plot::{ColorScale, Colormap, PolarPanel};
 use polbrdf_tasks::detect::{
@@ -31,13 +32,14 @@ pub struct Args {
     pub background: Option<String>,
     /// Grid steps over the hemisphere, DTHETA or DTHETA,DPHI in degrees (default 1,2).
     #[arg(long, value_name = "DTHETA[,DPHI]", conflicts_with_all = ["theta_deg", "phi_deg"])]
-    pub grid_deg: Option<String>,
+    pub grid_deg: Option<GridDeg>,
     /// Listed view zenith angle(s), degrees; with --phi-deg, every combination (no maps).
     #[arg(
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::zenith()
     )]
     pub theta_deg: Vec<f64>,
     /// Listed view azimuth(s), degrees (default 0).
@@ -45,7 +47,8 @@ pub struct Args {
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::azimuth()
     )]
     pub phi_deg: Vec<f64>,
     /// Ranges (m) at which every view is evaluated (rows of detect.csv; the P_d map is at the
@@ -54,7 +57,8 @@ pub struct Args {
         long,
         value_name = "M",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = values::positive()
     )]
     pub ranges_m: Vec<f64>,
     /// Do not search each view's detection range.
@@ -65,7 +69,8 @@ pub struct Args {
         long,
         value_name = "M",
         default_value_t = DetectRequest::default().range_limit_m,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::positive()
     )]
     pub range_limit_m: f64,
     /// The target's area, m² (a flat patch).
@@ -73,7 +78,8 @@ pub struct Args {
         long,
         value_name = "M2",
         default_value_t = DetectRequest::default().area_m2,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::positive()
     )]
     pub area_m2: f64,
     /// False-alarm probability.
@@ -81,7 +87,8 @@ pub struct Args {
         long,
         value_name = "P",
         default_value_t = DetectRequest::default().pfa,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::probability()
     )]
     pub pfa: f64,
     /// Required probability of detection.
@@ -89,7 +96,8 @@ pub struct Args {
         long,
         value_name = "P",
         default_value_t = DetectRequest::default().pd,
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = values::probability()
     )]
     pub pd: f64,
     /// Features the detector may use, comma-separated (default: all of them).
@@ -101,8 +109,9 @@ pub struct Args {
     )]
     pub features: Vec<Feature>,
     /// The sun's zenith and azimuth, degrees, replacing the scene's [sun] position.
-    #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true)]
-    pub sun_deg: Option<String>,
+    #[arg(long, value_name = "ZENITH,AZIMUTH", allow_hyphen_values = true,
+          value_parser = values::pair(Range::ZENITH, Range::AZIMUTH, "ZENITH,AZIMUTH in degrees"))]
+    pub sun_deg: Option<Pair>,
     /// The target material's fit (fit.json of `polbrdf fit`, of the target's material and its
     /// values): the detection range gets σ and a 95 % interval (docs/detection.md).
     #[arg(long, value_name = "FIT.json")]
@@ -112,8 +121,8 @@ pub struct Args {
     pub background_fit: Option<PathBuf>,
     /// With a fit: the best-ranked views given an interval, a number or `all` (default 10;
     /// each costs 2 range searches per free parameter).
-    #[arg(long, value_name = "N|all")]
-    pub uncertainty_views: Option<String>,
+    #[arg(long, value_name = "N|all", value_parser = view_count)]
+    pub uncertainty_views: Option<ViewCount>,
     /// Also simulate the camera frame at the best view and the first range: frame.png/.svg
     /// and frame_*.npy (photon-counting DoFP sensors; docs/detection-frame.md).
     #[arg(long)]
@@ -126,15 +135,20 @@ pub struct Args {
     pub out: PathBuf,
 }
 
-/// Comma-separated numbers of `option`, exactly `count` of them.
-fn pair(text: &str, option: &str) -> Result<(f64, f64), CliError> {
-    let v: Result<Vec<f64>, _> = text.split(',').map(|t| t.trim().parse::<f64>()).collect();
-    match v.as_deref() {
-        Ok([a, b]) => Ok((*a, *b)),
-        Ok([a]) if option == "--grid-deg" => Ok((*a, *a)),
-        _ => Err(CliError::Invalid(format!(
-            "{option} = {text:?}: expected two numbers separated by a comma"
-        ))),
+/// `--uncertainty-views`: a number of views (`Some`) or `all` (`None`).
+#[derive(Debug, Clone, Copy)]
+pub struct ViewCount(pub Option<usize>);
+
+/// The value parser of `--uncertainty-views` (a bad value exits 2, as every bad option value).
+fn view_count(text: &str) -> Result<ViewCount, String> {
+    match text.trim() {
+        "all" => Ok(ViewCount(None)),
+        t => t
+            .parse::<usize>()
+            .ok()
+            .filter(|n| *n > 0)
+            .map(|n| ViewCount(Some(n)))
+            .ok_or_else(|| format!("{text:?}: expected a number of views ≥ 1 or `all`")),
     }
 }
 
@@ -148,8 +162,8 @@ impl Args {
             if !self.phi_deg.is_empty() {
                 return Err(CliError::Usage("--phi-deg needs --theta-deg".into()));
             }
-            if let Some(g) = &self.grid_deg {
-                r.views = Views::Grid(pair(g, "--grid-deg")?);
+            if let Some(GridDeg(g)) = self.grid_deg {
+                r.views = Views::Grid(g);
             }
         } else {
             crate::limits::at_most(
@@ -171,22 +185,11 @@ impl Args {
         r.search = !self.no_search;
         (r.range_limit_m, r.area_m2, r.pfa, r.pd) =
             (self.range_limit_m, self.area_m2, self.pfa, self.pd);
-        r.sun_deg = self
-            .sun_deg
-            .as_deref()
-            .map(|s| pair(s, "--sun-deg"))
-            .transpose()?;
+        r.sun_deg = self.sun_deg.map(|Pair(z, a)| (z, a));
         r.target_fit = self.target_fit.clone().map(FitSource::File);
         r.background_fit = self.background_fit.clone().map(FitSource::File);
-        if let Some(n) = &self.uncertainty_views {
-            r.uncertainty_views = match n.trim() {
-                "all" => None,
-                t => Some(t.parse::<usize>().ok().filter(|n| *n > 0).ok_or_else(|| {
-                    CliError::Invalid(format!(
-                        "--uncertainty-views = {n:?}: expected a number of views ≥ 1 or `all`"
-                    ))
-                })?),
-            };
+        if let Some(ViewCount(n)) = self.uncertainty_views {
+            r.uncertainty_views = n;
         }
         Ok(r)
     }

@@ -22,7 +22,8 @@ pub struct Args {
         long,
         value_name = "DEG",
         value_delimiter = ',',
-        allow_hyphen_values = true
+        allow_hyphen_values = true,
+        value_parser = crate::values::zenith()
     )]
     pub theta_deg: Vec<f64>,
     /// Output CSV (written atomically); standard output when absent.
@@ -31,7 +32,7 @@ pub struct Args {
     /// Over a band, weight the wavelengths by Planck's law at this temperature (K) as well as
     /// by the response: the emissivity of a surface at that temperature, seen in the band.
     /// Without it, by the response only.
-    #[arg(long, value_name = "K", requires = "band")]
+    #[arg(long, value_name = "K", requires = "band", value_parser = crate::values::positive())]
     pub temperature_k: Option<f64>,
     #[command(flatten)]
     pub spectral: SpectralArgs,

@@ -34,6 +34,17 @@ impl CliError {
         io.is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
     }
 
+    /// A task's refusal of a request field that only options fill (no file content): a usage
+    /// error naming the option (exit code 2), like clap's own refusals.
+    pub fn usage(e: polbrdf_tasks::TaskError) -> Self {
+        match e {
+            polbrdf_tasks::TaskError::Invalid { field, message } => {
+                CliError::Usage(format!("{}: {}", option_of(&field), with_options(&message)))
+            }
+            other => other.into(),
+        }
+    }
+
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Io(e) if e.is_data_error() => 3,

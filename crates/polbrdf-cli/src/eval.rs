@@ -43,6 +43,15 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
         writer.column_kinds(kinds);
     }
     let mut scan = polbrdf_io::AngleScan::default();
+    let bar = progress_bar(input, reader.rows_hint());
+    let total = reader.rows_hint().unwrap_or(0);
+    let mut done = 0u64;
+    let mut progress = |rows: usize| {
+        done += rows as u64;
+        if let Some(bar) = &bar {
+            bar.set(done, total, None);
+        }
+    };
     while let Some(chunk) = reader.next_chunk(CHUNK_ROWS)? {
         if let Geometries::Angles(g) = &chunk.geometries {
             g.iter().for_each(|g| scan.add(g));
@@ -61,10 +70,35 @@ pub fn run(material: &str, input: &Path, output: Option<&Path>) -> Result<(), Cl
             }
         };
         writer.write_chunk(&chunk, &pbrdf)?;
+        progress(chunk.geometries.len());
     }
+    drop(bar);
     writer.finish()?;
     crate::output::unit_warnings(scan.warning(&input.display().to_string()).as_slice());
     Ok(())
+}
+
+/// Rows from which an `eval` is large enough for a progress bar: about 2 s of work at the
+/// ~4 µs per row of a CSV table read, evaluated and written (full Mueller matrix, 25 columns
+/// of shortest round-trip text; docs/cli-conventions.md).
+pub const LARGE_EVAL_ROWS: u64 = 500_000;
+
+/// Bytes of a CSV input from which an `eval` is large (its row count is not known before it
+/// is read): [`LARGE_EVAL_ROWS`] rows of the four angle columns, ~20 bytes each.
+pub const LARGE_EVAL_CSV_BYTES: u64 = 20 * LARGE_EVAL_ROWS;
+
+/// The progress bar of a large `eval` (drawn on a terminal only): by rows of a table whose
+/// count is known (`.npy`, Arrow), or a row counter for a large CSV file; none for a small
+/// table or standard input.
+fn progress_bar(input: &Path, rows: Option<u64>) -> Option<crate::progress::Progress> {
+    match rows {
+        Some(n) if n >= LARGE_EVAL_ROWS => Some(crate::progress::Progress::new(n, "eval: rows")),
+        Some(_) => None,
+        None => std::fs::metadata(input)
+            .ok()
+            .filter(|m| m.is_file() && m.len() >= LARGE_EVAL_CSV_BYTES)
+            .map(|_| crate::progress::Progress::counter("eval: rows")),
+    }
 }
 
 /// The results of a chunk's rows through the engine: from the angles, or from the direction

@@ -28,8 +28,8 @@ pub struct Args<'a> {
 /// the `.pbsdf` fit of `measured.rs`; the output layer's checks of the paths ran before).
 pub fn run(args: &Args<'_>) -> Result<(), CliError> {
     // Options before data (issue 35): no file is read for a command line that is refused.
-    let free = Param::parse_list(args.free)?;
-    crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
+    // --free names the parameters: a bad name is a usage error (exit 2).
+    let free = Param::parse_list(args.free).map_err(|e| CliError::Usage(format!("--free: {e}")))?;
     let base = crate::output::load_material(args.material)?;
     let table = polbrdf_io::read_measurements_csv(args.data)?;
     let mut scan = polbrdf_io::AngleScan::default();

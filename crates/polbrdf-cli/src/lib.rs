@@ -38,6 +38,7 @@ mod residuals;
 mod spectrum;
 mod sun;
 mod sweep;
+mod values;
 mod view;
 
 use error::CliError;
@@ -98,7 +99,7 @@ enum Command {
         #[arg(long, value_name = "fitted.toml")]
         material_out: Option<PathBuf>,
         /// Extra starts scattered around the start values (the best fit is kept).
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 2, value_parser = values::count(0, limits::STARTS))]
         starts: usize,
         /// Seed of the extra starts.
         #[arg(long, default_value_t = 1)]
@@ -117,7 +118,7 @@ enum Command {
         index_out: Option<PathBuf>,
         /// With a .pbsdf table: keep every N-th node along each of φ_d, θ_d, θ_h (default: the
         /// smallest N keeping at most 20 000 cells).
-        #[arg(long, value_name = "N")]
+        #[arg(long, value_name = "N", value_parser = values::count(1, usize::MAX))]
         subsample: Option<usize>,
         /// With a .pbsdf table: leave out the cells whose matrix is not physically realizable
         /// (they are always counted and reported).
@@ -179,15 +180,16 @@ enum Command {
     /// A lookup table over materials × wavelengths × in-plane geometries (θi, θr, Δφ = φr − φi)
     /// from a TOML configuration (see docs/scaling.md).
     ///
-    /// Writes the new directory --out: table.npy (one row per material, wavelength, θi, θr, Δφ
-    /// in C order; columns m00 … m33, brdf, dolp, aolp_deg as asked) and attrs.json
-    /// (dimensions, coordinates, conventions, materials). Python: polbrdf.xarray.open_lut(DIR).
+    /// Writes into --out: table.npy (one row per material, wavelength, θi, θr, Δφ in C order;
+    /// columns m00 … m33, brdf, dolp, aolp_deg as asked) and attrs.json (dimensions,
+    /// coordinates, conventions, materials). Python: polbrdf.xarray.open_lut(DIR).
     Lut {
         /// The table's configuration (TOML: materials, wavelength_um, theta_i_deg,
         /// theta_r_deg, dphi_deg, quantities).
         #[arg(long, value_name = "lut.toml")]
         config: PathBuf,
-        /// The directory to create (an existing one is refused).
+        /// Output directory (created if missing; in an existing one, the table's files are
+        /// replaced and no other file is touched).
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
     },
@@ -199,7 +201,8 @@ enum Command {
         #[arg(long, value_name = "FILE.toml|PRESET")]
         material: String,
         /// Zenith step of the grid in degrees (the relative azimuth uses twice this step).
-        #[arg(long, value_name = "DEG", default_value_t = polbrdf_tasks::check::DEFAULT_GRID_DEG)]
+        #[arg(long, value_name = "DEG", default_value_t = polbrdf_tasks::check::DEFAULT_GRID_DEG,
+              value_parser = values::number(values::Range::open_closed(0.0, 30.0)))]
         grid_deg: f64,
         /// Also write every check at every spectral node as JSON (written atomically, also
         /// when a check fails): the document of Python's `polbrdf.check`.
@@ -401,6 +404,158 @@ mod tests {
 
     use super::*;
     use output::{Role, PATH_OPTIONS};
+
+    /// A path no run can read: a command line's inputs point here, so that a run stops at its
+    /// first file (after every option check) with an error naming it.
+    const NOWHERE: &str = "/nonexistent-polbrdf-probe/x";
+
+    /// Command lines of each command whose inputs do not exist, in order of preference: an
+    /// option probed by the next test is set in the first one that admits it (clap's
+    /// `requires`/`conflicts_with` differ between them).
+    fn probe_templates(command: &str) -> Vec<Vec<String>> {
+        let x = NOWHERE;
+        let lines: Vec<Vec<&str>> = match command {
+            "eval" => vec![vec!["--material", x, "--input", x]],
+            "fit" => vec![vec!["--material", x, "--data", x, "--free", "rho_d"]],
+            "contrast" => vec![
+                vec!["--target", x, "--background", x, "--sun-zenith-deg", "30"],
+                vec![
+                    "--target",
+                    x,
+                    "--background",
+                    x,
+                    "--sun-zenith-deg",
+                    "30",
+                    "--band",
+                    x,
+                ],
+                vec!["--target", x, "--background", x, "--scene", x],
+            ],
+            "map" | "albedo" | "emission" | "check" => vec![
+                vec!["--material", x, "--sun-zenith-deg", "30"],
+                vec!["--material", x],
+                vec!["--material", x, "--sun-zenith-deg", "30", "--band", x],
+                vec!["--material", x, "--band", x],
+            ],
+            "detect" => vec![
+                vec!["--scene", x, "--sensor", x],
+                vec!["--scene", x, "--sensor", x, "--frame"],
+            ],
+            "daytime" => vec![vec!["--scene", x, "--sensor", x]],
+            "radiance" => vec![vec!["--material", x, "--scene", x]],
+            "spectrum" => vec![vec!["--material", x]],
+            "export" => vec![vec![
+                "--material",
+                x,
+                "--output",
+                "/nonexistent-polbrdf-probe/t.pbsdf",
+            ]],
+            "explore" => vec![vec!["--dir", x]],
+            "sun" => vec![vec![
+                "--date-time",
+                "2026-06-21T12:00:00Z",
+                "--latitude-deg",
+                "48",
+                "--longitude-deg",
+                "16",
+            ]],
+            "bench" => vec![vec!["--count", "1000"]],
+            _ => vec![vec![]],
+        };
+        lines
+            .into_iter()
+            .map(|l| {
+                std::iter::once("polbrdf")
+                    .chain(std::iter::once(command))
+                    .chain(l)
+                    .map(String::from)
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The exit code and message of a command line, as `main_with_args` gives them (without
+    /// its process-wide hooks), or clap's refusal of the line.
+    fn outcome(args: &[String]) -> Result<(u8, String), clap::Error> {
+        let matches = Cli::command().try_get_matches_from(args)?;
+        let cli = Cli::from_arg_matches(&matches)?;
+        // `bench` and `sun` read no file, so a run would be the whole job (seconds of
+        // benchmark, JSON on standard output): parsed only. Neither refuses an option after
+        // parsing but as a usage error (`sun` maps its task's refusals so; `bench` has none).
+        if matches!(args[1].as_str(), "bench" | "sun") {
+            return Ok((0, String::new()));
+        }
+        Ok(match checked_run(&matches, cli) {
+            Ok(()) => (0, String::new()),
+            Err(e) => (e.exit_code(), e.to_string()),
+        })
+    }
+
+    /// Issue 33: every numeric option of every command (found by walking the clap tree: every
+    /// option whose values parse to one of `values::numeric_types`) is fed invalid and
+    /// out-of-range values. A value its parser refuses is a usage error naming the option (exit
+    /// code 2) before anything runs; a value its parser accepts is accepted by the command: the
+    /// run goes on to its first input file (which does not exist) and stops there, never
+    /// refusing the value later as invalid input (exit code 3) or failing on it.
+    #[test]
+    fn every_numeric_option_refuses_a_bad_value_with_exit_code_2() {
+        const PROBES: [&str; 9] = [
+            "nan",
+            "inf",
+            "-1",
+            "0",
+            "90",
+            "1e300",
+            "-1e300",
+            "99999999999999999999",
+            "x",
+        ];
+        let cli = Cli::command();
+        let numeric = values::numeric_types();
+        let mut probed = 0;
+        for sub in cli.get_subcommands() {
+            let name = sub.get_name();
+            for arg in sub.get_arguments().filter(|a| !a.is_positional()) {
+                let value_type = arg.get_value_parser().type_id();
+                if !numeric.iter().any(|t| value_type == *t) {
+                    continue;
+                }
+                let long = format!("--{}", arg.get_long().expect("a long option"));
+                for probe in PROBES {
+                    let given = format!("{long}={probe}");
+                    let mut ran = false;
+                    for mut line in probe_templates(name) {
+                        if let Some(k) = line.iter().position(|a| *a == long) {
+                            line.drain(k..k + 2);
+                        }
+                        line.push(given.clone());
+                        match outcome(&line) {
+                            // Refused by the option's value parser.
+                            Err(e) if e.kind() == clap::error::ErrorKind::ValueValidation => {
+                                assert_eq!(e.exit_code(), 2, "{line:?}");
+                                assert!(e.to_string().contains(&long), "{line:?}: {e}");
+                            }
+                            // The template does not admit the option: try the next one.
+                            Err(_) => continue,
+                            Ok((code, message)) => assert!(
+                                code != 1
+                                    && (code != 3 || message.contains(NOWHERE))
+                                    && !(message.contains(&long) && code != 2),
+                                "{line:?}: accepted by the option's parser, then refused as \
+                                 exit code {code}: {message}"
+                            ),
+                        }
+                        ran = true;
+                        break;
+                    }
+                    assert!(ran, "polbrdf {name} {given}: no template admits it");
+                    probed += 1;
+                }
+            }
+        }
+        assert!(probed > 300, "{probed} probes");
+    }
+
     use std::path::Path;
 
     /// Options taking a material file or preset name (a `String`, which may name a file).
@@ -531,7 +686,7 @@ mod tests {
             ],
             ("spectrum", "out") => &["spectrum", "--material", "{m}", "--out", "{X}"],
             ("lut", "out") => &["lut", "--config", "{m}", "--out", "{X}"],
-            ("export", "out") => &["export", "--material", "{m}", "--out", "{X}"],
+            ("export", "output") => &["export", "--material", "{m}", "--output", "{X}"],
             ("check", "output") => &["check", "--material", "{m}", "--output", "{X}"],
             ("daytime", "out") => &["daytime", "--scene", "{s}", "--out", "{X}"],
             _ => return None,

@@ -33,8 +33,7 @@ fn prepare(
                 .into(),
         ));
     }
-    crate::limits::at_most("--starts", args.starts, crate::limits::STARTS)?;
-    let free = Param::parse_list(args.free)?;
+    let free = Param::parse_list(args.free).map_err(|e| CliError::Usage(format!("--free: {e}")))?;
     let base = crate::output::load_material(args.material)?;
     let table = PbsdfTable::open(args.data)?;
     let stride = plan(&table, args.subsample, args.starts).map_err(|e| match e {

@@ -72,7 +72,8 @@ pub enum Role {
     Input,
     /// A file written (through `polbrdf_io::Output`).
     File,
-    /// A directory of files written as a set (`polbrdf_io::write_files`, or `lut`'s new one).
+    /// A directory of files written as a set (polbrdf-io's `write_set`; an existing one keeps
+    /// every file not of the set).
     Dir,
 }
 
@@ -125,7 +126,7 @@ pub const PATH_OPTIONS: &[(&str, &str, Role)] = &[
     ("check", "band", Role::Input),
     ("check", "output", Role::File),
     ("export", "material", Role::Input),
-    ("export", "out", Role::File),
+    ("export", "output", Role::File),
     ("daytime", "scene", Role::Input),
     ("daytime", "sensor", Role::Input),
     ("daytime", "target", Role::Input),

@@ -28,7 +28,8 @@ pub struct Args {
         value_name = "DEG",
         value_delimiter = ',',
         allow_hyphen_values = true,
-        conflicts_with = "input"
+        conflicts_with = "input",
+        value_parser = crate::values::zenith()
     )]
     pub theta_deg: Vec<f64>,
     /// View azimuth(s) in degrees. Default: 0.
@@ -37,7 +38,8 @@ pub struct Args {
         value_name = "DEG",
         value_delimiter = ',',
         allow_hyphen_values = true,
-        conflicts_with = "input"
+        conflicts_with = "input",
+        value_parser = crate::values::azimuth()
     )]
     pub phi_deg: Vec<f64>,
     /// A CSV of view directions (columns theta_r_deg, phi_r_deg; other columns are ignored)

@@ -12,7 +12,7 @@ use std::path::PathBuf;
 pub struct SpectralArgs {
     /// Wavelength (µm) at which to evaluate materials with a spectral index (`index = …`);
     /// constant-index materials do not depend on it.
-    #[arg(long, value_name = "UM", conflicts_with = "band")]
+    #[arg(long, value_name = "UM", conflicts_with = "band", value_parser = crate::values::positive())]
     pub wavelength_um: Option<f64>,
     /// A band: a CSV file with columns wavelength_um,response (relative spectral response,
     /// linear between rows, zero outside). Results integrate Stokes vectors over it
@@ -21,7 +21,7 @@ pub struct SpectralArgs {
     pub band: Option<PathBuf>,
     /// Largest quadrature step over the band, µm (default: 1/16 of its width; the nodes of
     /// tabulated indices are panel edges as well).
-    #[arg(long, value_name = "UM", requires = "band")]
+    #[arg(long, value_name = "UM", requires = "band", value_parser = crate::values::positive())]
     pub band_step_um: Option<f64>,
 }
 

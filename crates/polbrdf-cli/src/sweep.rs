@@ -6,6 +6,7 @@
 use crate::error::CliError;
 use crate::output::{write_all, OutputFile as Output};
 use crate::spectrum::load_spec;
+use crate::values::{self, Pair, Quad, Range};
 use polbrdf::engine::Engine;
 use polbrdf::{Geometry, MaterialSpec};
 use polbrdf_io::CsvTable;
@@ -24,40 +25,26 @@ pub struct Args {
         long,
         value_name = "DEG",
         conflicts_with = "geometry_deg",
-        default_value_t = 45.0
+        default_value_t = 45.0,
+        value_parser = values::zenith()
     )]
     pub theta_deg: f64,
     /// Any geometry instead: θi,φi,θr,φr in degrees.
-    #[arg(long, value_name = "TI,PI,TR,PR")]
-    pub geometry_deg: Option<String>,
+    #[arg(long, value_name = "TI,PI,TR,PR", allow_hyphen_values = true,
+          value_parser = values::quad([Range::ZENITH, Range::AZIMUTH, Range::ZENITH, Range::AZIMUTH],
+                                      "TI,PI,TR,PR in degrees"))]
+    pub geometry_deg: Option<Quad>,
     /// Wavelength range in µm: λmin,λmax.
-    #[arg(long, value_name = "MIN,MAX", default_value = "0.4,14")]
-    pub range_um: String,
+    #[arg(long, value_name = "MIN,MAX", default_value = "0.4,14",
+          value_parser = values::pair(Range::POSITIVE, Range::POSITIVE, "MIN,MAX in µm"))]
+    pub range_um: Pair,
     /// Number of wavelengths, spaced evenly in log λ over the range.
-    #[arg(long, value_name = "N", default_value_t = 400)]
+    #[arg(long, value_name = "N", default_value_t = 400,
+          value_parser = values::count(2, crate::limits::SPECTRUM_POINTS))]
     pub points: usize,
     /// Output directory: spectrum.csv, spectrum.png, spectrum.svg.
     #[arg(long, value_name = "DIR", default_value = "spectrum-out")]
     pub out: PathBuf,
-}
-
-fn numbers(text: &str, option: &str, count: usize) -> Result<Vec<f64>, CliError> {
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|s| s.trim().parse::<f64>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| {
-            CliError::Invalid(format!(
-                "{option} = {text:?}: expected {count} numbers separated by commas"
-            ))
-        })?;
-    if v.len() != count {
-        return Err(CliError::Invalid(format!(
-            "{option} = {text:?}: expected {count} numbers separated by commas, got {}",
-            v.len()
-        )));
-    }
-    Ok(v)
 }
 
 /// One material's spectrum.
@@ -108,30 +95,18 @@ fn series(
 
 /// Runs `polbrdf spectrum`.
 pub fn run(args: &Args) -> Result<(), CliError> {
-    let r = numbers(&args.range_um, "--range-um", 2)?;
-    let (lo, hi) = (r[0], r[1]);
-    if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
-        return Err(CliError::Invalid(format!(
+    let Pair(lo, hi) = args.range_um;
+    if hi <= lo {
+        return Err(CliError::Usage(format!(
             "--range-um = {lo},{hi}: need 0 < λmin < λmax (µm)"
         )));
     }
-    if args.points < 2 {
-        return Err(CliError::Invalid("--points must be at least 2".into()));
-    }
-    crate::limits::at_most("--points", args.points, crate::limits::SPECTRUM_POINTS)?;
     let geometry = match &args.geometry_deg {
-        Some(text) => {
-            let g = numbers(text, "--geometry-deg", 4)?;
-            Geometry::from_degrees(g[0], g[1], g[2], g[3])
-        }
+        Some(Quad([ti, pi, tr, pr])) => Geometry::from_degrees(*ti, *pi, *tr, *pr),
         None => Geometry::from_degrees(args.theta_deg, 0.0, args.theta_deg, 180.0),
     }
-    .map_err(|e| CliError::Invalid(format!("geometry: {e}")))?;
-    if !geometry.is_above_horizon() {
-        return Err(CliError::Invalid(
-            "geometry: source and detector must be above the horizon (zenith < 90°)".into(),
-        ));
-    }
+    // The options' ranges hold the angles above the horizon already.
+    .map_err(|e| CliError::Usage(format!("--geometry-deg: {e}")))?;
     let step = (hi / lo).ln() / (args.points - 1) as f64;
     let wavelengths: Vec<f64> = (0..args.points)
         .map(|i| {

@@ -362,7 +362,7 @@ fn swapping_target_and_background_negates_delta_dolp() {
 }
 
 #[test]
-fn bad_inputs_exit_3_and_write_nothing() {
+fn bad_inputs_exit_3_bad_options_2_and_write_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let olive = example("olive-paint.toml");
     let bad_key = dir.path().join("bad.toml");
@@ -372,15 +372,15 @@ fn bad_inputs_exit_3_and_write_nothing() {
         (vec!["--target", "no-such-paint"], "--target"),
         (vec!["--background", "no-such-soil"], "--background"),
         (vec!["--background", &bad_key], "colour"),
-        (vec!["--sun-zenith-deg", "-5"], "sun_zenith_deg"),
-        (vec!["--sun-zenith-deg=-0.5"], "sun_zenith_deg"),
-        (vec!["--sun-zenith-deg", "90"], "sun_zenith_deg"),
-        (vec!["--sun-zenith-deg", "120"], "sun_zenith_deg"),
-        (vec!["--sun-zenith-deg", "NaN"], "sun_zenith_deg"),
-        (vec!["--grid-deg", "0"], "grid_deg"),
-        (vec!["--grid-deg", "-1"], "grid_deg"),
-        (vec!["--grid-deg", "0.01"], "grid_deg"),
-        (vec!["--stokes", "1,0.9,0.9,0"], "stokes"),
+        (vec!["--sun-zenith-deg", "-5"], "--sun-zenith-deg"),
+        (vec!["--sun-zenith-deg=-0.5"], "--sun-zenith-deg"),
+        (vec!["--sun-zenith-deg", "90"], "--sun-zenith-deg"),
+        (vec!["--sun-zenith-deg", "120"], "--sun-zenith-deg"),
+        (vec!["--sun-zenith-deg", "NaN"], "--sun-zenith-deg"),
+        (vec!["--grid-deg", "0"], "--grid-deg"),
+        (vec!["--grid-deg", "-1"], "--grid-deg"),
+        (vec!["--grid-deg", "0.01"], "--grid-deg"),
+        (vec!["--stokes", "1,0.9,0.9,0"], "--stokes"),
         (vec!["--stokes", "1,0"], "--stokes"),
         (vec!["--top", "0"], "--top"),
         (vec!["--max-zenith-deg", "90"], "--max-zenith-deg"),
@@ -412,7 +412,13 @@ fn bad_inputs_exit_3_and_write_nothing() {
         let out_s = out.to_str().unwrap().to_string();
         args.extend(["--out", &out_s]);
         let o = polbrdf(&args);
-        assert_eq!(o.status.code(), Some(3), "{extra:?}: {}", stderr(&o));
+        // A bad material file is invalid input (3); a bad option value a usage error (2).
+        let code = if ["--target", "--background", "colour"].contains(&needle) {
+            3
+        } else {
+            2
+        };
+        assert_eq!(o.status.code(), Some(code), "{extra:?}: {}", stderr(&o));
         assert!(stderr(&o).contains(needle), "{extra:?}: {}", stderr(&o));
         assert!(!out.exists(), "{extra:?}: output directory created");
     }
@@ -514,4 +520,45 @@ fn ranking_by_polarization_contrast_marks_its_own_map() {
     // A metal against a dielectric under polarized light: the AoLPs differ (the metal's
     // retardance). Under unpolarized light both AoLPs are set by the geometry alone.
     assert!(t.col("aolp_difference_deg").iter().any(|d| d.abs() > 5.0));
+}
+
+/// Issue 33: `contrast --scene` and a large `eval` draw a progress bar only on a terminal: with
+/// standard error a pipe (a log), it holds the notes alone — no bar, no carriage return.
+#[test]
+fn a_piped_standard_error_gets_no_progress_bar() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = polbrdf(&[
+        "contrast",
+        "--scene",
+        &example("daylight-scene.toml"),
+        "--grid-deg",
+        "10,30",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // A large eval: 500 000 rows of a .npy table (the row count known in advance).
+    let cols = ["theta_i_deg", "phi_i_deg", "theta_r_deg", "phi_r_deg"];
+    let rows: Vec<f64> = (0..500_000)
+        .flat_map(|k| [30.0, 0.0, (k % 80) as f64, 180.0])
+        .collect();
+    let input = dir.path().join("big.npy");
+    std::fs::write(&input, polbrdf_io::npy::npy_bytes(&cols, &rows).unwrap()).unwrap();
+    let e = polbrdf(&[
+        "eval",
+        "--material",
+        "paint",
+        "--input",
+        input.to_str().unwrap(),
+        "--output",
+        dir.path().join("out.npy").to_str().unwrap(),
+    ]);
+    assert!(e.status.success(), "{}", stderr(&e));
+    for err in [stderr(&o), stderr(&e)] {
+        assert!(
+            !err.contains('\r') && !err.contains("rows") && !err.contains("viewing directions"),
+            "{err:?}"
+        );
+    }
 }

@@ -114,19 +114,22 @@ fn map_writes_csv_and_maps_of_the_model() {
 }
 
 #[test]
-fn map_refuses_bad_input_with_exit_3() {
+fn map_refuses_a_bad_material_with_exit_3_and_a_bad_angle_with_2() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("m");
-    for args in [
-        vec!["--material", "unobtainium", "--sun-zenith-deg", "30"],
-        vec!["--material", "paint", "--sun-zenith-deg", "-10"],
-        vec!["--material", "paint", "--sun-zenith-deg", "90"],
+    for (args, code) in [
+        (
+            vec!["--material", "unobtainium", "--sun-zenith-deg", "30"],
+            3,
+        ),
+        (vec!["--material", "paint", "--sun-zenith-deg", "-10"], 2),
+        (vec!["--material", "paint", "--sun-zenith-deg", "90"], 2),
     ] {
         let mut a = vec!["map"];
         a.extend(&args);
         a.extend(["--out", out.to_str().unwrap()]);
         let o = polbrdf(&a);
-        assert_eq!(o.status.code(), Some(3), "{args:?}: {}", stderr(&o));
+        assert_eq!(o.status.code(), Some(code), "{args:?}: {}", stderr(&o));
         assert!(!out.exists());
     }
     // A malformed option value is a usage error (exit 2), and writes nothing either.

@@ -430,7 +430,7 @@ fn sigterm_during_export_leaves_no_temporary() {
             "paint",
             "--grid",
             "181,91,91",
-            "--out",
+            "--output",
         ])
         .arg(&out)
         .stderr(Stdio::null())
@@ -563,7 +563,7 @@ fn export_writes_through_the_output_layer() {
                 "paint",
                 "--grid",
                 "3,3,3",
-                "--out",
+                "--output",
                 out,
             ])
             .output()
@@ -663,4 +663,92 @@ fn a_scene_on_standard_input_is_read_by_the_command_only() {
     let o = child.wait_with_output().unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&out).unwrap().lines().count(), 2);
+}
+
+/// Issue 33: every command's `--out DIR` treats an existing directory the same way — its own
+/// files replaced as a set (the marker `_COMPLETE`, listing them, last) and every other file
+/// left alone — and refuses a `DIR` that is a regular file, leaving it as it was.
+#[test]
+fn every_out_dir_keeps_other_files_and_replaces_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let lut = write(
+        d,
+        "lut.toml",
+        "materials = [\"paint\"]\nwavelength_um = [0.6]\ntheta_i_deg = [0, 30]\n\
+         theta_r_deg = [0]\ndphi_deg = [180]\n",
+    );
+    let ex = |name: &str| format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let lines: Vec<Vec<String>> = [
+        vec![
+            "map",
+            "--material",
+            "paint",
+            "--sun-zenith-deg",
+            "30",
+            "--grid-deg",
+            "30",
+        ],
+        vec![
+            "contrast",
+            "--target",
+            "paint",
+            "--background",
+            "glass",
+            "--sun-zenith-deg",
+            "30",
+            "--grid-deg",
+            "30",
+        ],
+        vec!["spectrum", "--material", "paint", "--points", "2"],
+        vec!["lut", "--config", &lut],
+        vec![
+            "detect",
+            "--scene",
+            &ex("detect-daylight-scene.toml"),
+            "--sensor",
+            &ex("sensors/sony-imx250mzr-dofp.toml"),
+            "--theta-deg",
+            "0",
+            "--no-search",
+        ],
+    ]
+    .iter()
+    .map(|l| l.iter().map(|a| a.to_string()).collect())
+    .collect();
+    for line in lines {
+        let out = d.join(format!("{}-out", line[0]));
+        std::fs::create_dir(&out).unwrap();
+        std::fs::write(out.join("notes.txt"), "keep").unwrap();
+        let mut args: Vec<&str> = line.iter().map(String::as_str).collect();
+        args.extend(["--out", out.to_str().unwrap()]);
+        for run in 0..2 {
+            let o = polbrdf(&args);
+            assert!(o.status.success(), "{args:?} (run {run}): {}", stderr(&o));
+        }
+        assert_eq!(
+            std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+            "keep",
+            "{args:?}"
+        );
+        let listed = std::fs::read_to_string(out.join("_COMPLETE")).unwrap();
+        assert!(!listed.contains("notes.txt"), "{args:?}: {listed}");
+        assert!(listed.lines().count() >= 2, "{args:?}: {listed}");
+        for name in listed.lines() {
+            assert!(out.join(name).is_file(), "{args:?}: {name}");
+        }
+        assert!(
+            temporaries(&out).is_empty() && temporaries(d).is_empty(),
+            "{args:?}"
+        );
+        // A regular file where the directory goes: refused, untouched.
+        let file = d.join(format!("{}-file", line[0]));
+        std::fs::write(&file, "keep").unwrap();
+        args.pop();
+        args.push(file.to_str().unwrap());
+        let o = polbrdf(&args);
+        assert_eq!(o.status.code(), Some(4), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains("not a directory"), "{}", stderr(&o));
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+    }
 }

@@ -26,6 +26,7 @@ pub mod tensorfile;
 pub mod toml_doc;
 pub mod units;
 pub mod write;
+pub mod write_set;
 
 pub use csv_io::{
     parse_band_csv, parse_geometry_csv, parse_sky_profile_csv, parse_sky_table_csv,
@@ -47,6 +48,5 @@ pub use scene::{
 pub use sensor::{parse_sensor, read_sensor, SensorFile};
 pub use tensorfile::TensorFile;
 pub use units::{material_warnings, AngleScan, UnitWarning};
-pub use write::{
-    check_distinct, install_signal_cleanup, write_atomic, write_files, Output, StagingDir, Target,
-};
+pub use write::{check_distinct, install_signal_cleanup, write_atomic, Output, Target};
+pub use write_set::{write_files, StagingDir};

@@ -17,7 +17,8 @@
 //!   and so is one with more than one hard link (replacing it would split the links).
 //!   A replaced file keeps its permissions and (where the process may set it) its owner.
 //!
-//! A set of files ([`write_files`]) is written as a whole: every file is first written into a
+//! A set of files ([`write_files`](crate::write_set::write_files), module
+//! [`write_set`](crate::write_set)) is written as a whole: every file is first written into a
 //! staging directory; a new directory is then renamed into place in one step. Into an
 //! existing directory the files are renamed one by one after the completion marker
 //! [`SET_MARKER`] is removed, and the marker is written last, so a consumer that checks the
@@ -29,7 +30,8 @@ use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// The completion marker of a set of files written by [`write_files`]: written last, it lists
+/// The completion marker of a set of files written by
+/// [`write_files`](crate::write_set::write_files): written last, it lists
 /// the set's files, one name a line.
 pub const SET_MARKER: &str = "_COMPLETE";
 
@@ -47,14 +49,14 @@ pub enum Target {
     Atomic(PathBuf),
 }
 
-fn write_err(path: &Path, source: std::io::Error) -> Error {
+pub(crate) fn write_err(path: &Path, source: std::io::Error) -> Error {
     Error::Write {
         path: path.to_path_buf(),
         source,
     }
 }
 
-fn refuse(path: &Path, message: String) -> Error {
+pub(crate) fn refuse(path: &Path, message: String) -> Error {
     Error::File {
         path: path.to_path_buf(),
         message,
@@ -138,13 +140,13 @@ impl Target {
 /// The registry of named temporaries (files and staging directories) to remove on a signal.
 static TEMPS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-fn register(p: &Path) {
+pub(crate) fn register(p: &Path) {
     if let Ok(mut t) = TEMPS.lock() {
         t.push(p.to_path_buf());
     }
 }
 
-fn unregister(p: &Path) {
+pub(crate) fn unregister(p: &Path) {
     if let Ok(mut t) = TEMPS.lock() {
         t.retain(|q| q != p);
     }
@@ -269,7 +271,7 @@ pub fn clean_stale_temporaries(dir: &Path) {
 }
 
 /// A fresh temporary name in `dir`: `.polbrdf-<pid>-<random>.tmp`.
-fn temp_name(dir: &Path) -> PathBuf {
+pub(crate) fn temp_name(dir: &Path) -> PathBuf {
     use std::hash::{BuildHasher, Hasher};
     let mut h = std::collections::hash_map::RandomState::new().build_hasher();
     h.write_u64(
@@ -284,7 +286,7 @@ fn temp_name(dir: &Path) -> PathBuf {
     ))
 }
 
-fn dir_of(path: &Path) -> &Path {
+pub(crate) fn dir_of(path: &Path) -> &Path {
     match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -552,81 +554,6 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     out.commit()
 }
 
-/// Creates `dir` (and its parents) and writes the files `(name, bytes)` into it as a set (see
-/// the module's rules: staged, then moved into place, the marker [`SET_MARKER`] last); returns
-/// the paths in order.
-///
-/// # Errors
-/// [`Error::Write`] naming the directory or the file; then no file of the set was changed
-/// unless the error came while moving the staged files (the marker is then missing).
-pub fn write_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<Vec<PathBuf>> {
-    let derr = |source| Error::Write {
-        path: dir.to_path_buf(),
-        source,
-    };
-    let fresh = !dir.exists();
-    let parent = if fresh {
-        let parent = dir_of(dir).to_path_buf();
-        std::fs::create_dir_all(&parent).map_err(derr)?;
-        parent
-    } else {
-        if !dir.is_dir() {
-            return Err(refuse(dir, "exists and is not a directory".into()));
-        }
-        dir.to_path_buf()
-    };
-    clean_stale_temporaries(&parent);
-    let stage = temp_name(&parent);
-    register(&stage);
-    let staged = stage_set(&stage, dir, files);
-    let result = staged.and_then(|()| {
-        if fresh {
-            std::fs::rename(&stage, dir).map_err(derr)
-        } else {
-            let marker = dir.join(SET_MARKER);
-            match std::fs::remove_file(&marker) {
-                Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(derr(e)),
-                _ => {}
-            }
-            for (name, _) in files
-                .iter()
-                .chain(std::iter::once(&(SET_MARKER.to_string(), vec![])))
-            {
-                std::fs::rename(stage.join(name), dir.join(name)).map_err(|e| Error::Write {
-                    path: dir.join(name),
-                    source: e,
-                })?;
-            }
-            Ok(())
-        }
-    });
-    let _ = std::fs::remove_dir_all(&stage);
-    unregister(&stage);
-    result.map(|()| files.iter().map(|(name, _)| dir.join(name)).collect())
-}
-
-/// Writes every file and the marker into the staging directory, synced.
-fn stage_set(stage: &Path, dir: &Path, files: &[(String, Vec<u8>)]) -> Result<()> {
-    std::fs::create_dir(stage).map_err(|e| write_err(dir, e))?;
-    let mut listing = String::new();
-    for (name, bytes) in files {
-        if name.contains('/') || name == SET_MARKER || name.is_empty() {
-            return Err(refuse(&dir.join(name), "is not a plain file name".into()));
-        }
-        let path = stage.join(name);
-        let shown = dir.join(name);
-        let mut f = File::create(&path).map_err(|e| write_err(&shown, e))?;
-        f.write_all(bytes)
-            .and_then(|()| f.sync_all())
-            .map_err(|e| write_err(&shown, e))?;
-        listing.push_str(name);
-        listing.push('\n');
-    }
-    let marker = stage.join(SET_MARKER);
-    std::fs::write(&marker, listing).map_err(|e| write_err(&dir.join(SET_MARKER), e))?;
-    Ok(())
-}
-
 /// What names a file for [`check_distinct`]: device and inode of an existing regular file, or
 /// the resolved path of one to be created.
 #[derive(Debug, PartialEq, Eq)]
@@ -700,73 +627,4 @@ pub fn check_distinct(inputs: &[&Path], outputs: &[&Path]) -> Result<()> {
         outs.push((out, id));
     }
     Ok(())
-}
-
-/// A new directory staged next to its destination as `.polbrdf-<pid>-<random>.tmp` (registered
-/// for removal on SIGINT/SIGTERM/SIGHUP; a later run removes it if this process was killed),
-/// filled by the caller, then renamed into place by [`StagingDir::commit`]. Dropped without
-/// commit, it is removed. For outputs too large to hold in memory ([`write_files`] holds its
-/// files' bytes).
-#[derive(Debug)]
-pub struct StagingDir {
-    path: Option<PathBuf>,
-    dest: PathBuf,
-}
-
-impl StagingDir {
-    /// Stages the new directory `dest`, refused when `dest` exists.
-    ///
-    /// # Errors
-    /// [`Error::Write`] naming `dest`.
-    pub fn create(dest: &Path) -> Result<StagingDir> {
-        if std::fs::symlink_metadata(dest).is_ok() {
-            return Err(write_err(
-                dest,
-                std::io::Error::new(
-                    std::io::ErrorKind::AlreadyExists,
-                    "exists: a new directory is written here, never one replaced",
-                ),
-            ));
-        }
-        let parent = dir_of(dest);
-        clean_stale_temporaries(parent);
-        let path = temp_name(parent);
-        register(&path);
-        if let Err(e) = std::fs::create_dir(&path) {
-            unregister(&path);
-            return Err(write_err(dest, e));
-        }
-        Ok(StagingDir {
-            path: Some(path),
-            dest: dest.to_path_buf(),
-        })
-    }
-
-    /// Where to write the files.
-    pub fn path(&self) -> &Path {
-        self.path.as_deref().expect("not committed")
-    }
-
-    /// Moves the staged directory into place.
-    ///
-    /// # Errors
-    /// [`Error::Write`] naming the destination; the staged directory is then removed.
-    pub fn commit(mut self) -> Result<()> {
-        let path = self.path.take().expect("committed once");
-        let r = std::fs::rename(&path, &self.dest);
-        if r.is_err() {
-            let _ = std::fs::remove_dir_all(&path);
-        }
-        unregister(&path);
-        r.map_err(|e| write_err(&self.dest, e))
-    }
-}
-
-impl Drop for StagingDir {
-    fn drop(&mut self) {
-        if let Some(p) = self.path.take() {
-            let _ = std::fs::remove_dir_all(&p);
-            unregister(&p);
-        }
-    }
 }

@@ -1,6 +1,6 @@
 //! `report.md` and the per-claim verdicts, written from the computed numbers only.
 
-use crate::analysis::{Analysis, InterpResult, Spread};
+use crate::analysis::{Analysis, InterpResult, Row0Fit, Spread};
 use crate::compute::{fresnel_rs_rp, Roughness, Smooth};
 use crate::params::*;
 use crate::Check;
@@ -29,221 +29,23 @@ fn col(ci: f64) -> usize {
     TABLE_ANGLES_DEG.iter().position(|&t| t == ci).unwrap_or(0)
 }
 
-/// The verdict on each claim of the paper's §3–4.
-pub fn checks(a: &Analysis) -> Vec<Check> {
-    let mut out = Vec::new();
-    let first = a.spreads.first().copied();
-    let last = a.spreads.last().copied();
-    let (Some(first), Some(last)) = (first, last) else {
-        return out;
-    };
-    let mid = spread_at(a, 45.0);
+mod checks;
+mod emission;
 
-    // (1)
-    out.push(Check {
-        claim: "(1) The BRDF falls as the roughness (θN in Fig. 2) grows, at every incidence angle"
-            .into(),
-        confirmed: a.fig2_decreasing,
-        evidence: format!(
-            "every Fig. 2 curve decreases monotonically over θN = {:.2}°…{:.0}°; at θi = 45° f \
-             falls from {} to {} sr⁻¹ ({:.1} decades), because D(θN)·cos²θN·SO all decrease",
-            a.fig2.theta_n_deg[0],
-            FIG2_THETA_N_MAX_DEG,
-            sci(mid.max),
-            sci(mid.min),
-            mid.decades()
-        ),
-    });
+pub use checks::checks;
+use emission::emission_section;
 
-    // (2)
-    let cross_text = if a.crossings.is_empty() {
-        "no two curves cross".to_string()
-    } else {
-        a.crossings
-            .iter()
-            .map(|(lo, hi, tn)| {
-                format!("θi = {hi:.0}° drops below θi = {lo:.0}° from θN = {tn:.2}°")
-            })
-            .collect::<Vec<_>>()
-            .join("; ")
-    };
-    out.push(Check {
-        claim: "(2) The Fig. 2 curves are ordered by incidence angle: a larger θi = θr gives a \
-                larger BRDF at every θN"
-            .into(),
-        confirmed: a.fig2_ordered,
-        evidence: format!(
-            "the factor R_F(θi)/cos⁴θi of eq. 6 orders the curves at small θN (at θN = {:.2}°: \
-             {} sr⁻¹ at 1° up to {} sr⁻¹ at 89°), but SO falls faster with θN at larger β, so \
-             {cross_text}",
-            a.fig2.theta_n_deg[0],
-            sci(first.max),
-            sci(last.max)
-        ),
-    });
-
-    // (3)
-    let abs_grows = a.spreads.windows(2).all(|w| w[1].abs() > w[0].abs());
-    out.push(Check {
-        claim: "(3) The max−min spread of the Fig. 2 curves grows with incidence angle".into(),
-        confirmed: abs_grows,
-        evidence: format!(
-            "max−min = {} sr⁻¹ at θi = {:.0}°, {} at 45°, {} at {:.0}°; on the log axis \
-             log10(max/min) = {:.2}, {:.2}, {:.2} decades",
-            sci(first.abs()),
-            first.theta_deg,
-            sci(mid.abs()),
-            sci(last.abs()),
-            last.theta_deg,
-            first.decades(),
-            mid.decades(),
-            last.decades()
-        ),
-    });
-    let off_grows = a
-        .spreads
-        .windows(2)
-        .all(|w| w[1].abs_off() > w[0].abs_off());
-    let off_dec_spread = a
-        .spreads
-        .iter()
-        .map(|s| s.decades_off())
-        .fold(f64::NEG_INFINITY, f64::max)
-        - a.spreads
-            .iter()
-            .map(|s| s.decades_off())
-            .fold(f64::INFINITY, f64::min);
-    out.push(Check {
-        claim: "(3′) That growth of the spread is the effect of shadowing/obscuration".into(),
-        confirmed: !off_grows,
-        evidence: format!(
-            "with SO switched off the absolute spread still grows from {} (θi = {:.0}°) to {} \
-             sr⁻¹ ({:.0}°){}: it is the R_F/cos⁴θi scale of eq. 6. Shadowing only changes the \
-             relative spread: without it log10(max/min) is {:.2} decades for every θi (range \
-             {:.1e}); with it the spread gains log10(1/SO(60°)) = {:.3} decades at {:.0}°, \
-             {:.3} at 45° and {:.3} at {:.0}° (saturating above θi ≈ 30°, where exp(−2β/τ) ≈ 0)",
-            sci(first.abs_off()),
-            first.theta_deg,
-            sci(last.abs_off()),
-            last.theta_deg,
-            if off_grows {
-                ""
-            } else {
-                " (not monotonically)"
-            },
-            last.decades_off(),
-            off_dec_spread,
-            -first.so_end.log10(),
-            first.theta_deg,
-            -mid.so_end.log10(),
-            -last.so_end.log10(),
-            last.theta_deg
-        ),
-    });
-
-    // (4)
-    let (pt, pd) = a.fig3_peak;
-    out.push(Check {
-        claim: format!(
-            "(4) For a smooth dielectric the DoLP peaks at Brewster's angle atan({N}) = {:.2}°, \
-             where it reaches 1",
-            brewster_deg()
-        ),
-        confirmed: (pt - brewster_deg()).abs() <= 0.5 && (pd - 1.0).abs() < 1e-9,
-        evidence: format!(
-            "Fig. 3 maximum DoLP = {pd:.12} at θ = {pt:.4}° (Brewster {:.4}°); DoLP = 0 at \
-             normal incidence and at grazing",
-            brewster_deg()
-        ),
-    });
-
-    // (5)
-    let p = a.primary();
-    let c45 = col(45.0);
-    let c80 = col(80.0);
-    out.push(Check {
-        claim: "(5) Roughness lowers the DoLP".into(),
-        confirmed: (1..6).all(|r| (0..5).all(|c| p.cells[r][c] <= p.cells[r - 1][c] + 1e-9))
-            && p.cells[5][c45] < p.cells[0][c45],
-        evidence: format!(
-            "only through the unpolarized volume term: with roughness = σ of D and ρ_D = \
-             {RHO_D}, ρ_V = {RHO_V} sr⁻¹, DoLP at 45° falls from {:.1} % (σ → 0) to {:.1} % \
-             (σ = 0.5 rad), but at 80° only from {:.2} % to {:.2} %; without a volume term \
-             roughness changes the specular DoLP by at most {:.1e} (rounding) anywhere in 0°–90°",
-            p.cells[0][c45],
-            p.cells[5][c45],
-            p.cells[0][c80],
-            p.cells[5][c80],
-            a.no_volume_max_change
-        ),
-    });
-
-    // (6)
-    let best = a
-        .interps
-        .iter()
-        .filter(|i| !matches!(i.how, Roughness::SigmaNoVolume))
-        .min_by(|x, y| x.rms_lawrence.total_cmp(&y.rms_lawrence));
-    out.push(Check {
-        claim: "(6) The model agrees with the Lawrence/Wolff values of Table 1 (errors mostly \
-                below 10 %)"
-            .into(),
-        confirmed: p.rms_lawrence < 5.0,
-        evidence: format!(
-            "our DoLP differs from the Lawrence/Wolff column by RMS {:.1} percentage points and \
-             from the paper's own model column by {:.1} (30 cells){}; the table's roughness \
-             effect also has the opposite angular pattern (strongest at 80°, ours vanishes \
-             there: relative-effect RMS {:.1} % of row 0)",
-            p.rms_lawrence,
-            p.rms_model,
-            best.map_or(String::new(), |b| format!(
-                "; the best of the interpretations tried, {}, still gives {:.1}",
-                b.label, b.rms_lawrence
-            )),
-            p.rel_lawrence
-        ),
-    });
-
-    // (7)
-    let fit =
-        |hyp: Smooth, column: usize| a.row0.iter().find(|f| f.hyp == hyp && f.column == column);
-    if let (Some(r0), Some(r1), Some(e0)) = (
-        fit(Smooth::Reflection, 0),
-        fit(Smooth::Reflection, 1),
-        fit(Smooth::Emission, 0),
-    ) {
-        let vals: Vec<String> = TABLE_ANGLES_DEG
-            .iter()
-            .map(|t| {
-                format!(
-                    "{:.1}",
-                    100.0 * Smooth::Reflection.dolp(N, 0.0, t.to_radians())
-                )
-            })
-            .collect();
-        out.push(Check {
-            claim: format!(
-                "(7) Table 1's roughness-0 row is the smooth-surface (Fresnel) DoLP of n = {N}, \
-                 i.e. Fig. 3 at 20/30/45/60/80°"
-            ),
-            confirmed: r0.rms_paper_n < 5.0,
-            evidence: format!(
-                "Fresnel reflection DoLP of n = {N} there is {} % against the printed 7, 15, 30, \
-                 58, 91 %: RMS {:.1} (paper's model column) and {:.1} (Lawrence/Wolff); 58 % at \
-                 60° and 91 % at 80° are impossible next to a 100 % peak at 58.8°. The row fits \
-                 reflection only for n ≈ {:.2} (RMS {:.2}) and thermal emission for n ≈ {:.0} \
-                 (RMS {:.2})",
-                vals.join(", "),
-                r0.rms_paper_n,
-                r1.rms_paper_n,
-                r0.real.n,
-                r0.real.rms,
-                e0.real.n,
-                e0.real.rms
-            ),
-        });
-    }
-    out
+/// The smallest and largest `f` over the smooth-row fits that satisfy `pred`.
+fn row0_range(
+    a: &Analysis,
+    f: &dyn Fn(&Row0Fit) -> f64,
+    pred: &dyn Fn(&Row0Fit) -> bool,
+) -> (f64, f64) {
+    let v: Vec<f64> = a.row0.iter().filter(|r| pred(r)).map(f).collect();
+    (
+        v.iter().copied().fold(f64::INFINITY, f64::min),
+        v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    )
 }
 
 fn table_row(cells: &[String]) -> String {
@@ -253,9 +55,20 @@ fn table_row(cells: &[String]) -> String {
 /// The full report.
 pub fn markdown(a: &Analysis, checks: &[Check]) -> String {
     let mut s = String::new();
-    let p = a.primary();
-    let b = brewster_deg();
+    intro(&mut s, checks);
+    parameters(&mut s, a);
+    fig2(&mut s, a);
+    fig3(&mut s, a);
+    roughness(&mut s, a);
+    table1(&mut s, a);
+    smooth_row(&mut s, a);
+    interpretations(&mut s, a);
+    conclusions(&mut s, a);
+    s
+}
 
+/// The title, the paper and the model in brief, and the verdict on each claim.
+fn intro(s: &mut String, checks: &[Check]) {
     let _ = write!(
         s,
         r#"# Reproduction of Zhuansun et al. (2015), "simplified polarimetric BRDF model based on the MB model"
@@ -305,7 +118,11 @@ radians inside the library, τ and Ω read as degrees.
             c.evidence.replace('|', "\\|")
         );
     }
+}
 
+/// ## Parameters: every number the computation uses, with its source.
+fn parameters(s: &mut String, a: &Analysis) {
+    let b = brewster_deg();
     // Parameters
     let _ = write!(
         s,
@@ -341,7 +158,10 @@ radians inside the library, τ and Ω read as degrees.
         FIG2_THETA_N_STEP_DEG,
         std::f64::consts::PI * RHO_D * 100.0,
     );
+}
 
+/// ## Fig. 2: the BRDF against θN, and the paper's three statements on it.
+fn fig2(s: &mut String, a: &Analysis) {
     // Fig. 2
     let _ = write!(
         s,
@@ -416,7 +236,11 @@ What the model says about the paper's three statements on Fig. 2:
             }
         }
     );
+}
 
+/// ## Fig. 3: the DoLP of a smooth surface.
+fn fig3(s: &mut String, a: &Analysis) {
+    let b = brewster_deg();
     // Fig. 3
     let (pt, pd) = a.fig3_peak;
     let _ = write!(
@@ -437,7 +261,12 @@ The markers are Table 1's roughness-0 row, which should be this curve: it is not
 below).
 "#
     );
+}
 
+/// ## What "roughness" can mean in this model, and Fig. 4.
+fn roughness(s: &mut String, a: &Analysis) {
+    let p = a.primary();
+    let b = brewster_deg();
     // Roughness meaning
     let a0 = interp(a, |h| h == Roughness::SigmaNoVolume);
     // Above Brewster's angle, where the roughness curves merge (within 0.5 points from there on).
@@ -522,7 +351,11 @@ from {:.1} % (σ → 0) to {:.1} % (σ = 0.5 rad); at 80° from {:.2} % to {:.2}
         p.cells[0][col(80.0)],
         p.cells[5][col(80.0)],
     );
+}
 
+/// ## Table 1 and Fig. 5: our DoLP beside the paper's two columns.
+fn table1(s: &mut String, a: &Analysis) {
+    let p = a.primary();
     // Table 1
     let _ = write!(
         s,
@@ -548,7 +381,10 @@ Each cell: **ours** (interpretation (a)) / the paper's model / Lawrence–Wolff,
         }
         s.push_str(&table_row(&cells));
     }
+}
 
+/// ### The smooth row cannot come from the stated index.
+fn smooth_row(s: &mut String, a: &Analysis) {
     let _ = write!(
         s,
         r#"
@@ -597,18 +433,10 @@ smooth surface could give this row (RMS over the 5 angles, percentage points):
         })
         .collect();
     let (rs80, rp80) = fresnel_rs_rp(N, 0.0, 80f64.to_radians());
-    let range = |f: &dyn Fn(&crate::analysis::Row0Fit) -> f64,
-                 pred: &dyn Fn(&crate::analysis::Row0Fit) -> bool| {
-        let v: Vec<f64> = a.row0.iter().filter(|r| pred(r)).map(f).collect();
-        (
-            v.iter().copied().fold(f64::INFINITY, f64::min),
-            v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        )
-    };
-    let (at_n_lo, at_n_hi) = range(&|r| r.rms_paper_n, &|_| true);
-    let (best_lo, best_hi) = range(&|r| r.real.rms.min(r.complex.rms), &|_| true);
-    let (refl_lo, refl_hi) = range(&|r| r.real.n, &|r| r.hyp == Smooth::Reflection);
-    let (em_lo, em_hi) = range(&|r| r.real.n, &|r| r.hyp == Smooth::Emission);
+    let (at_n_lo, at_n_hi) = row0_range(a, &|r| r.rms_paper_n, &|_| true);
+    let (best_lo, best_hi) = row0_range(a, &|r| r.real.rms.min(r.complex.rms), &|_| true);
+    let (refl_lo, refl_hi) = row0_range(a, &|r| r.real.n, &|r| r.hyp == Smooth::Reflection);
+    let (em_lo, em_hi) = row0_range(a, &|r| r.real.n, &|r| r.hyp == Smooth::Emission);
     let _ = write!(
         s,
         r#"
@@ -631,7 +459,10 @@ reflection model and its stated n = {N} (R_s = {:.3}, R_p = {:.3} at 80°, DoLP 
         rp80,
         100.0 * Smooth::Reflection.dolp(N, 0.0, 80f64.to_radians()),
     );
+}
 
+/// ### All interpretations against both columns.
+fn interpretations(s: &mut String, a: &Analysis) {
     let _ = write!(
         s,
         r#"
@@ -686,7 +517,12 @@ model column; Lawrence: {:.0} % and {:.0} %).
             TABLE_PAPER_LAWRENCE[5][4] / TABLE_PAPER_LAWRENCE[0][4]
         ),
     ]));
+}
 
+/// The other interpretations cell by cell, where the paper's numbers cannot come from its
+/// stated parameters, the files, and interpretation (c).
+fn conclusions(s: &mut String, a: &Analysis) {
+    let (at_n_lo, at_n_hi) = row0_range(a, &|r| r.rms_paper_n, &|_| true);
     let other_rows: Vec<String> = a
         .interps
         .iter()
@@ -744,363 +580,4 @@ The other interpretations, cell by cell ((c) in the next section):
         other_rows.join(""),
         emission_section(a),
     );
-    s
-}
-
-/// The section on interpretation (c): Table 1 as the polarized thermal emission of the rough
-/// surface, from the core's Kirchhoff emissivity.
-fn emission_section(a: &Analysis) -> String {
-    use crate::analysis::EmissionNotes;
-    let Some(c) = interp(a, |h| matches!(h, Roughness::Emission(_, true))) else {
-        return String::new();
-    };
-    let en = &a.emission_notes;
-    let d = &c.cells;
-    let (pm, pl) = (&TABLE_PAPER_MODEL, &TABLE_PAPER_LAWRENCE);
-    let (c20, c80) = (col(20.0), col(80.0));
-    let mut s = String::new();
-
-    // The table.
-    let _ = write!(
-        s,
-        r#"
-### Interpretation (c): Table 1 as polarized thermal emission
-
-If Table 1 were the polarization of the light the rough paint *emits* — Kirchhoff's law applied
-to this model, roughness = σ of D in radians, n = {:.1}, shadowing on, standard form, no volume
-term — it would read (**(c)** / paper's model / Lawrence–Wolff; DoLP of the emitted light in %
-at view angle θ):
-
-| roughness | 20° | 30° | 45° | 60° | 80° |
-|---|---|---|---|---|---|
-"#,
-        en.n
-    );
-    for (ri, r) in ROUGHNESS.iter().enumerate() {
-        let mut cells = vec![format!("{r:.1}")];
-        for ci in 0..5 {
-            cells.push(format!(
-                "**{:.1}** / {:.0} / {:.0}",
-                d[ri][ci], pm[ri][ci], pl[ri][ci]
-            ));
-        }
-        s.push_str(&table_row(&cells));
-    }
-
-    // Provenance and checks.
-    let grids = [&en.cells[..], &en.cells_no_so[..]];
-    let residual = grids
-        .iter()
-        .map(|g| EmissionNotes::max_residual(g))
-        .fold(0.0, f64::max);
-    let eps23 = grids
-        .iter()
-        .map(|g| EmissionNotes::max_eps23(g))
-        .fold(0.0, f64::max);
-    let n_cells = en.cells.iter().flatten().count();
-    let invalid = EmissionNotes::invalid(&en.cells);
-    let range = |f: &dyn Fn(&polbrdf::analysis::Emissivity) -> f64| {
-        en.cells
-            .iter()
-            .flatten()
-            .map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                (lo.min(x), hi.max(x))
-            })
-    };
-    let (s_lo, s_hi) = range(&|e| e.eps_s());
-    let (p_lo, p_hi) = range(&|e| e.eps_p());
-    let cell_name =
-        |ri: usize, ci: usize| format!("{:.1}/{:.0}°", ROUGHNESS[ri], TABLE_ANGLES_DEG[ci]);
-    let invalid_list = |list: &[(usize, usize, polbrdf::analysis::Emissivity)]| {
-        list.iter()
-            .map(|(ri, ci, e)| {
-                format!(
-                    "{} (ε_s = {:.3}, ε_p = {:.3})",
-                    cell_name(*ri, *ci),
-                    e.eps_s(),
-                    e.eps_p()
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let validity = if invalid.is_empty() {
-        format!(
-            "All {n_cells} cells are physically valid (`is_valid`): ε_s and ε_p lie in [0, 1] \
-             everywhere (ε_s from {s_lo:.3} to {s_hi:.3}, ε_p from {p_lo:.3} to {p_hi:.3})."
-        )
-    } else {
-        format!(
-            "{} of the {n_cells} cells are not physically valid (ε_s or ε_p outside [0, 1]): {}.",
-            invalid.len(),
-            invalid_list(&invalid)
-        )
-    };
-    let _ = write!(
-        s,
-        r#"
-**Where the numbers come from.** Row 0 is the σ → 0 limit, the Fresnel emission DoLP
-|R_s − R_p|/(2 − R_s − R_p) of the flat surface. The model approaches it: at σ =
-{SMOOTH_CHECK_SIGMA_DEG}° its emission DoLP differs from it by at most {:.1e} points with
-shadowing off (the core's smooth limit converges as σ²) and by {:.2} points with shadowing on
-({:.2} at σ = {}°: linear in σ, because SO's loss (θN/Ω)·(1 − exp(−2β/τ)) is first order in the
-facet tilt). Every other cell is the DoLP sqrt(ε1² + ε2²)/ε0 of the core's Kirchhoff emissivity
-(`polbrdf::analysis::emission::emissivities`, one batched call per roughness): route A, the
-definition ε = e0 − ∫F[:, 0] cosθi dω_i over the incidence hemisphere, on the core's
-facet-normal rule (stated to 1e-6 absolute from σ = 0.05° to 80°). Route B — one minus the
-directional–hemispherical reflectance of s- and p-polarized light incident from the view
-direction — agrees with route A to a largest reciprocity residual of {:.1e} over these
-{n_cells} cells and the {} of (c′) below (rounding: the standard form is reciprocal); ε2 and ε3
-{}. {validity}
-"#,
-        100.0 * en.smooth_gap_no_so,
-        100.0 * en.smooth_gap_so.0,
-        100.0 * en.smooth_gap_so.1,
-        2.0 * SMOOTH_CHECK_SIGMA_DEG,
-        residual,
-        en.cells_no_so.iter().flatten().count(),
-        if eps23 == 0.0 {
-            "vanish exactly (mirror symmetry)".to_string()
-        } else {
-            format!("are at most {eps23:.1e} (0 by mirror symmetry)")
-        },
-    );
-
-    // Against the printed table.
-    let monotone = (0..5).all(|ci| (1..6).all(|ri| d[ri][ci] <= d[ri - 1][ci]));
-    let first_loss: Vec<f64> = (0..5).map(|ci| 1.0 - d[1][ci] / d[0][ci]).collect();
-    let (fl_lo, fl_hi) = first_loss
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
-            (l.min(x), h.max(x))
-        });
-    let table_step = |t: &[[f64; 5]; 6]| {
-        (0..5)
-            .map(|ci| (t[1][ci] - t[0][ci]).abs())
-            .fold(0.0, f64::max)
-    };
-    let keep = |t: &[[f64; 5]; 6], ci: usize| 100.0 * t[5][ci] / t[0][ci];
-    let rough_rms = |t: &[[f64; 5]; 6]| {
-        let s: f64 = (1..6)
-            .flat_map(|ri| (0..5).map(move |ci| (ri, ci)))
-            .map(|(ri, ci)| (d[ri][ci] - t[ri][ci]).powi(2))
-            .sum();
-        (s / 25.0).sqrt()
-    };
-    let row0_rms = |t: &[[f64; 5]; 6]| {
-        ((0..5).map(|ci| (d[0][ci] - t[0][ci]).powi(2)).sum::<f64>() / 5.0).sqrt()
-    };
-    let p = a.primary();
-    let falls = |t: &[[f64; 5]; 6]| (0..5).all(|ci| (1..6).all(|ri| t[ri][ci] <= t[ri - 1][ci]));
-    let sign = match (monotone, falls(pm) && falls(pl)) {
-        (true, true) => {
-            "the same: (c)'s emission DoLP falls with roughness at every angle, as both \
-                         printed columns do"
-        }
-        (true, false) => {
-            "(c)'s emission DoLP falls with roughness at every angle; the printed \
-                          columns do not everywhere"
-        }
-        (false, _) => {
-            "not the same everywhere: (c)'s emission DoLP does not fall monotonically \
-                       with roughness at every angle"
-        }
-    };
-    let c_more_small = keep(d, c20) < keep(d, c80);
-    let pm_more_small = keep(pm, c20) < keep(pm, c80);
-    let c_pattern = match (c_more_small, pm_more_small) {
-        (true, false) => {
-            "(c) loses relatively more at small angles than toward grazing, the \
-                          paper's model column the other way round (the Lawrence/Wolff 29 % at \
-                          20° rests on its 2 %, which breaks its row's trend, see below)"
-        }
-        (false, true) => {
-            "(c) loses relatively more toward grazing, the paper's model column at \
-                          small angles"
-        }
-        (true, true) => "both lose relatively more at small angles than toward grazing",
-        (false, false) => "both lose relatively more toward grazing than at small angles",
-    };
-    let _ = write!(
-        s,
-        r#"
-**Against the printed table.**
-
-* *Row 0* is {:.2} points RMS from the Lawrence/Wolff row and {:.2} from the paper's model row,
-  by construction: n was fitted to the Lawrence/Wolff row as emission. It is no evidence for
-  (c).
-* *Sign of the roughness trend*: {sign}.
-* *Magnitude*: far too large. The first step, roughness 0 → 0.1, removes {:.0}–{:.0} % of the
-  DoLP at every angle ({:.1} → {:.1} % at 20°, {:.1} → {:.1} % at 80°); the printed columns
-  change by at most {:.0} (paper's model) and {:.0} (Lawrence/Wolff) points at that step. At
-  roughness 0.5, (c) keeps {:.0} % of its row-0 DoLP at 20° and {:.0} % at 80°; the table keeps
-  {:.0} % and {:.0} % (paper's model), {:.0} % and {:.0} % (Lawrence/Wolff): {c_pattern}.
-* *Overall*: RMS {:.1} points from the paper's model column and {:.1} from Lawrence/Wolff over
-  the 30 cells; over the 25 rough cells alone {:.1} and {:.1}. The relative roughness effect
-  DoLP(r)/DoLP(0) misses by {:.1} and {:.1} % of row 0, against {:.1} and {:.1} for the
-  reflection interpretation (a). **(c) does not reproduce Table 1**: it matches the fitted
-  smooth row and none of the rough rows.
-"#,
-        row0_rms(pl),
-        row0_rms(pm),
-        100.0 * fl_lo,
-        100.0 * fl_hi,
-        d[0][c20],
-        d[1][c20],
-        d[0][c80],
-        d[1][c80],
-        table_step(pm),
-        table_step(pl),
-        keep(d, c20),
-        keep(d, c80),
-        keep(pm, c20),
-        keep(pm, c80),
-        keep(pl, c20),
-        keep(pl, c80),
-        c.rms_model,
-        c.rms_lawrence,
-        rough_rms(pm),
-        rough_rms(pl),
-        c.rel_model,
-        c.rel_lawrence,
-        p.rel_model,
-        p.rel_lawrence,
-    );
-
-    // Why: the energy balance, and the variant without shadowing.
-    let flat0 = |ci: usize| 0.5 * (en.flat[ci].0 + en.flat[ci].1);
-    let e_so = en.cells[0][c20].eps.0[0];
-    let e_no = en.cells_no_so[0][c20].eps.0[0];
-    let _ = write!(
-        s,
-        r#"
-**Why the DoLP collapses.** With n = {:.1} the flat surface reflects {:.1} % at 20° (ε0 =
-{:.4}), so its emission DoLP |R_s − R_p|/(2 − R_s − R_p) has a small denominator and reacts
-strongly to any reflectance the surface loses. The MB model loses reflectance by shadowing: SO
-removes light without scattering it anywhere, and Kirchhoff's law counts that as absorption,
-hence emission. At 20° and σ = 0.1 rad the hemispherical reflectance 1 − ε0 is {:.4} against
-{:.4} for the flat surface: ε0 grows {:.1}-fold and the DoLP falls from {:.1} % to {:.1} %. With
-shadowing off (variant (c′) below) ε0 there is {:.5} (flat {:.5}) and the DoLP {:.1} %.
-
-**(c′) the same without shadowing** — DoLP (%) of the emitted light; a cell whose ε_s or ε_p
-leaves [0, 1] is marked *invalid*:
-
-| roughness | 20° | 30° | 45° | 60° | 80° |
-|---|---|---|---|---|---|
-"#,
-        en.n,
-        100.0 * (1.0 - flat0(c20)),
-        flat0(c20),
-        1.0 - e_so,
-        1.0 - flat0(c20),
-        e_so / flat0(c20),
-        d[0][c20],
-        d[1][c20],
-        e_no,
-        flat0(c20),
-        en.dolp_no_so[1][c20],
-    );
-    for (ri, r) in ROUGHNESS.iter().enumerate() {
-        let mut cells = vec![format!("{r:.1}")];
-        for ci in 0..5 {
-            let valid = ri == 0 || en.cells_no_so[ri - 1][ci].is_valid();
-            cells.push(if valid {
-                format!("{:.1}", en.dolp_no_so[ri][ci])
-            } else {
-                let e = en.cells_no_so[ri - 1][ci];
-                format!("*invalid* (ε_s = {:.3}, ε_p = {:.3})", e.eps_s(), e.eps_p())
-            });
-        }
-        s.push_str(&table_row(&cells));
-    }
-    let invalid_no_so = EmissionNotes::invalid(&en.cells_no_so);
-    let dn = &en.dolp_no_so;
-    // How much (c′) changes with roughness at small and at large angles, over its valid cells
-    // up to σ = 0.2 rad.
-    let change = |cols: &[usize]| {
-        cols.iter()
-            .flat_map(|&ci| (1..3).map(move |ri| (ri, ci)))
-            .filter(|&(ri, ci)| en.cells_no_so[ri - 1][ci].is_valid())
-            .map(|(ri, ci)| (dn[ri][ci] - dn[0][ci]).abs())
-            .fold(0.0, f64::max)
-    };
-    let breaks = if invalid_no_so.is_empty() {
-        "every cell is physically valid".to_string()
-    } else {
-        let above_one = |x: f64| x > 1.0 + polbrdf::analysis::emission::VALIDITY_TOLERANCE;
-        let both = invalid_no_so
-            .iter()
-            .any(|(_, _, e)| above_one(1.0 - e.eps_p()));
-        let rs: Vec<String> = invalid_no_so
-            .iter()
-            .map(|(ri, ci, e)| {
-                format!(
-                    "R_s = {:.3}, R_p = {:.3} at {}",
-                    1.0 - e.eps_s(),
-                    1.0 - e.eps_p(),
-                    cell_name(*ri, *ci)
-                )
-            })
-            .collect();
-        format!(
-            "it is not a physical emission: the s-polarized{} hemispherical reflectance exceeds 1 \
-             in {} cells — {} — so the model creates energy there and Kirchhoff's law gives a \
-             negative emissivity",
-            if both {
-                " (in the roughest cells also the p-polarized)"
-            } else {
-                ""
-            },
-            invalid_no_so.len(),
-            rs.join("; ")
-        )
-    };
-    let (small, large) = (change(&[c20, col(30.0)]), change(&[col(60.0), c80]));
-    let like_table = if small < large {
-        "the printed table's angular pattern"
-    } else {
-        "unlike the printed table, whose losses are largest at 60°–80°"
-    };
-    let first_invalid_80 = invalid_no_so
-        .iter()
-        .filter(|(_, ci, _)| *ci == c80)
-        .map(|(ri, _, _)| ROUGHNESS[*ri])
-        .fold(f64::INFINITY, f64::min);
-    let no_so_verdict = if first_invalid_80.is_finite() {
-        format!(
-            "without shadowing the model violates energy conservation at 80° from σ = \
-             {first_invalid_80:.1} rad on"
-        )
-    } else {
-        format!(
-            "without shadowing it stays {:.1}–{:.1} points RMS from the table",
-            en.rms_no_so_valid.0, en.rms_no_so_valid.1
-        )
-    };
-    let _ = write!(
-        s,
-        r#"
-Without SO the emission DoLP changes by at most {small:.1} points at 20°–30° and by up to
-{large:.1} points at 60°–80° up to σ = 0.2 rad — {like_table} — and its {} physically valid
-cells (row 0 included) are
-{:.1} (paper's model) and {:.1} (Lawrence/Wolff) points RMS from the table. But {breaks}.
-
-**What it shows about the paper.** The paper sets its reflection model beside the "Lawrence
-model", Wolff's model of polarized *thermal emission*, as if the two predicted the same
-quantity. Only Table 1's smooth row behaves like emission — of a metal-like, high-|N| surface,
-not of the paint's n = {N}. Reading the whole table as the emission this model predicts, the
-consistent way to set it beside an emission model, does not give the rough rows: with
-shadowing the emission depolarizes by {:.0}–{:.0} % at the first roughness step where the table
-barely moves, and {no_so_verdict}. Neither the model's reflected DoLP ((a), (a′), (b)) nor its emitted DoLP ((c),
-(c′)) gives the printed roughness dependence, so Table 1's agreement between "the model" and
-"Lawrence" did not come from this model's equations under either reading.
-"#,
-        en.rms_no_so_valid.2,
-        en.rms_no_so_valid.0,
-        en.rms_no_so_valid.1,
-        100.0 * fl_lo,
-        100.0 * fl_hi,
-    );
-    s
 }

@@ -11,6 +11,7 @@ use polbrdf::analysis::contrast::{
     polarization_null, Contrast, ContrastMap, ContrastSample, Illumination, RankOptions, Ranking,
 };
 use polbrdf::analysis::scene::null_temperature;
+use polbrdf::analysis::sky::Quality;
 use polbrdf::Spectrum;
 use polbrdf_io::Scene;
 use std::path::PathBuf;
@@ -282,6 +283,20 @@ fn scene_setup(request: &ContrastRequest, scene: Scene) -> TaskResult<SceneSetup
 /// for the scene, band and material files; [`TaskError::Model`] for a source or grid the model
 /// refuses.
 pub fn contrast(request: &ContrastRequest) -> TaskResult<ContrastStudy> {
+    contrast_with_progress(request, &mut |_, _| {})
+}
+
+/// [`contrast`], calling `progress(directions done, directions)` as the map of a scene is
+/// computed (its sky integrals are the slow part: seconds at the default grid), from
+/// `(0, n)` to `(n, n)`; under a collimated source (milliseconds) only `(n, n)` at the end.
+/// The numbers are [`contrast`]'s, bit for bit.
+///
+/// # Errors
+/// As [`contrast`].
+pub fn contrast_with_progress(
+    request: &ContrastRequest,
+    progress: &mut dyn FnMut(usize, usize),
+) -> TaskResult<ContrastStudy> {
     let options = request.rank.options()?;
     let (target, background, problem, setting, warnings) = match &request.source {
         SourceRequest::Scene(path) => {
@@ -306,14 +321,47 @@ pub fn contrast(request: &ContrastRequest) -> TaskResult<ContrastStudy> {
         }
     };
     let grid = view_grid(request.grid_deg)?;
+    let map = map_with_progress(&problem, &setting, &grid, progress);
     Ok(study(
         (target, background),
-        problem,
+        (problem, map),
         setting,
         warnings,
-        &grid,
         (request.rank, options),
     ))
+}
+
+/// Blocks of a scene's map between two progress reports.
+const PROGRESS_BLOCKS: usize = 100;
+
+/// `problem.map(grid)`, a scene's in at most [`PROGRESS_BLOCKS`] blocks of whole zenith rows
+/// with a progress report after each (the blocks give the same numbers bit for bit: tested).
+fn map_with_progress(
+    problem: &Contrast,
+    setting: &Setting,
+    grid: &polbrdf::ViewGrid,
+    progress: &mut dyn FnMut(usize, usize),
+) -> ContrastMap {
+    let n = grid.len();
+    if !matches!(setting, Setting::Scene(_)) {
+        let map = problem.map(grid);
+        progress(n, n);
+        return map;
+    }
+    let dirs: Vec<(f64, f64)> = (0..n).map(|i| grid.direction(i)).collect();
+    let mut samples = Vec::with_capacity(n);
+    progress(0, n);
+    // Whole zenith rows per block: a scene's sky integrals are shared along a row.
+    let row = grid.phis().len().max(1);
+    let rows = (n / row).div_ceil(PROGRESS_BLOCKS).max(1);
+    for block in dirs.chunks(rows * row) {
+        samples.extend(problem.at_all_with(block, Quality::Map));
+        progress(samples.len(), n);
+    }
+    ContrastMap {
+        grid: grid.clone(),
+        samples,
+    }
 }
 
 /// A contrast study under a collimated source of two materials already read (an adapter
@@ -340,12 +388,12 @@ pub fn contrast_of(
         spectrum,
         nodes,
     };
+    let map = problem.map(&grid);
     Ok(study(
         (target, background),
-        problem,
+        (problem, map),
         setting,
         Vec::new(),
-        &grid,
         (rank, options),
     ))
 }
@@ -353,13 +401,11 @@ pub fn contrast_of(
 /// The map, the ranking and the null loci of a problem set up.
 fn study(
     (target, background): (NamedMaterial, NamedMaterial),
-    problem: Contrast,
+    (problem, map): (Contrast, ContrastMap),
     setting: Setting,
     warnings: Vec<Warning>,
-    grid: &polbrdf::ViewGrid,
     (rank, options): (RankRequest, RankOptions),
 ) -> ContrastStudy {
-    let map = problem.map(grid);
     let top = problem.rank(&map, &options);
     let nulls = match &setting {
         Setting::Scene(s) => Some(null_loci(&problem, &map, s)),

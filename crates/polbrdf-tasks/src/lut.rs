@@ -6,9 +6,11 @@
 //! `DIR/table.npy`: one row per (material, wavelength, θi, θr, Δφ), in that C order, with the
 //! columns of the quantities asked for — `m00 … m33` (F row-major, sr⁻¹, psps basis), `brdf`
 //! (sr⁻¹), `dolp`, `aolp_deg` — the values of `polbrdf eval` at `φi = 0`, `φr = Δφ`, each
-//! material evaluated with its index at each wavelength. The directory is staged next to its
-//! destination (`polbrdf_io::StagingDir`) and renamed into place at the end: a failed or
-//! killed run leaves nothing a later run does not remove; an existing `DIR` is refused.
+//! material evaluated with its index at each wavelength. The files are staged next to their
+//! destination (`polbrdf_io::StagingDir`) and moved into place at the end as a set (with the
+//! `_COMPLETE` marker last): a failed or killed run leaves nothing a later run does not remove;
+//! in an existing `DIR` the set's files are replaced and every other file is left alone, as
+//! every command's `--out DIR` does.
 
 use crate::{TaskError, TaskResult};
 use polbrdf::model::KeyValue;

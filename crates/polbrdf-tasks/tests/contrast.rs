@@ -216,3 +216,53 @@ fn a_loaded_scene_gives_the_study_of_its_file() {
     assert_eq!(bits(&from_file), bits(&loaded));
     assert!(!bits(&loaded).is_empty());
 }
+
+/// Issue 33: a scene's map is computed in blocks with a progress report after each — from
+/// `(0, n)` to `(n, n)`, never backwards — and the blocks give the one-call map bit for bit
+/// (a daylight scene: sun and an azimuth-dependent sky, the slowest case).
+#[test]
+fn a_scene_study_reports_its_progress_to_completion_with_the_same_numbers() {
+    let request = ContrastRequest {
+        target: None,
+        background: None,
+        source: SourceRequest::Scene(example("daylight-scene.toml")),
+        grid_deg: (10.0, 30.0),
+        rank: RankRequest::default(),
+    };
+    let mut calls = Vec::new();
+    let study = polbrdf_tasks::contrast::contrast_with_progress(&request, &mut |done, total| {
+        calls.push((done, total))
+    })
+    .unwrap();
+    let n = study.map.grid.len();
+    assert_eq!(calls.first(), Some(&(0, n)));
+    assert_eq!(calls.last(), Some(&(n, n)));
+    assert!(calls.len() > 2, "{calls:?}");
+    assert!(
+        calls.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 == n),
+        "{calls:?}"
+    );
+    let whole = study.problem.map(&study.map.grid);
+    let bits = |s: &[polbrdf::analysis::contrast::ContrastSample]| -> Vec<u64> {
+        s.iter()
+            .flat_map(|s| {
+                [s.theta_r, s.phi_r]
+                    .into_iter()
+                    .chain(s.target.0)
+                    .chain(s.background.0)
+            })
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert_eq!(bits(&study.map.samples), bits(&whole.samples));
+    // Under a collimated source: one report, at the end.
+    let mut calls = Vec::new();
+    let rank = RankRequest::default();
+    polbrdf_tasks::contrast::contrast_with_progress(
+        &collimated("paint", "paint", rank),
+        &mut |done, total| calls.push((done, total)),
+    )
+    .unwrap();
+    assert_eq!(calls.len(), 1);
+    assert_eq!(calls[0].0, calls[0].1);
+}

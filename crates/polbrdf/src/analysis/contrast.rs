@@ -573,7 +573,7 @@ impl Contrast {
     }
 
     /// As [`Contrast::at_all`], a scene's azimuth-dependent sky integrated at `quality`.
-    fn at_all_with(&self, dirs: &[(f64, f64)], quality: Quality) -> Vec<ContrastSample> {
+    pub fn at_all_with(&self, dirs: &[(f64, f64)], quality: Quality) -> Vec<ContrastSample> {
         let (nodes, light) = match &self.source {
             Source::Collimated { nodes, light } => (nodes, light),
             Source::Scene { target, background } => {
