@@ -5,6 +5,7 @@
 
 use crate::error::CliError;
 use crate::output::{write_all, OutputFile};
+use crate::view::numbers;
 use polbrdf_plot::{render_files, Figure, LegendAt, Line, Panel, Render, PALETTE};
 use polbrdf_tasks::contrast::RankRequest;
 use polbrdf_tasks::daytime::{
@@ -113,11 +114,13 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
         times,
         grid_deg: match &args.grid_deg {
             None => DAYTIME_GRID_DEG,
-            Some(text) => match pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
-                [a] => (a, a),
-                [a, b] => (a, b),
-                _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
-            },
+            Some(text) => {
+                match numbers(text, "--grid-deg", "DTHETA or DTHETA,DPHI in degrees")?[..] {
+                    [a] => (a, a),
+                    [a, b] => (a, b),
+                    _ => return Err(invalid_pair(text, "--grid-deg", "DTHETA or DTHETA,DPHI")),
+                }
+            }
         },
         // The best view is the best grid node: refining it costs a sky integral per trial
         // view under a clear sky, at every time.
@@ -125,7 +128,7 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
             refine: false,
             ..RankRequest::default()
         },
-        fixed_view_deg: match pair(&args.fixed_view_deg, "--fixed-view-deg", "THETA,PHI")?[..] {
+        fixed_view_deg: match numbers(&args.fixed_view_deg, "--fixed-view-deg", "THETA,PHI")?[..] {
             [a, b] => (a, b),
             _ => {
                 return Err(invalid_pair(
@@ -137,19 +140,6 @@ fn request(args: &Args) -> Result<DaytimeRequest, CliError> {
         },
         detect,
     })
-}
-
-/// Comma-separated numbers of `option`.
-fn pair(text: &str, option: &str, what: &str) -> Result<Vec<f64>, CliError> {
-    text.split(',')
-        .map(|t| {
-            t.trim().parse::<f64>().map_err(|_| {
-                CliError::Invalid(format!(
-                    "{option} {text:?}: {t:?} is not a number (expected {what})"
-                ))
-            })
-        })
-        .collect()
 }
 
 fn invalid_pair(text: &str, option: &str, what: &str) -> CliError {

@@ -79,7 +79,8 @@ impl std::str::FromStr for GridDeg {
     }
 }
 
-fn numbers(text: &str, option: &str, what: &str) -> Result<Vec<f64>, CliError> {
+/// Comma-separated numbers of `option` (`what` they are, for the message).
+pub(crate) fn numbers(text: &str, option: &str, what: &str) -> Result<Vec<f64>, CliError> {
     text.split(',')
         .map(|t| {
             t.trim().parse::<f64>().map_err(|_| {
