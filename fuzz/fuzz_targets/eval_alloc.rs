@@ -6,33 +6,9 @@
 //! the first row). A counting allocator measures the peak.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
+use polbrdf_fuzz::{measure_peak, Counting, EVAL_FORMATS};
 use polbrdf_io::stream::{Format, GeometryReader, CHUNK_ROWS};
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-/// The system allocator, counting the bytes held now and the peak since the last reset.
-struct Counting;
-
-static NOW: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-// SAFETY: every call is forwarded unchanged to the system allocator; only counters are added.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            let now = NOW.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        NOW.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-}
 
 #[global_allocator]
 static ALLOC: Counting = Counting;
@@ -42,15 +18,14 @@ static ALLOC: Counting = Counting;
 const CHUNK_BUDGET: usize = 96 << 20;
 
 fn read_all(data: &[u8], name: &str, format: Format) {
-    let base = NOW.load(Ordering::Relaxed);
-    PEAK.store(base, Ordering::Relaxed);
-    let src = Box::new(std::io::Cursor::new(data.to_vec()));
-    if let Ok(mut reader) = GeometryReader::from_reader(src, Path::new(name), format) {
-        while let Ok(Some(chunk)) = reader.next_chunk(CHUNK_ROWS) {
-            assert!(!chunk.is_empty() && chunk.len() <= CHUNK_ROWS);
+    let ((), peak) = measure_peak(|| {
+        let src = Box::new(std::io::Cursor::new(data.to_vec()));
+        if let Ok(mut reader) = GeometryReader::from_reader(src, Path::new(name), format) {
+            while let Ok(Some(chunk)) = reader.next_chunk(CHUNK_ROWS) {
+                assert!(!chunk.is_empty() && chunk.len() <= CHUNK_ROWS);
+            }
         }
-    }
-    let peak = PEAK.load(Ordering::Relaxed) - base;
+    });
     assert!(
         peak <= CHUNK_BUDGET + 64 * data.len(),
         "{name}: {peak} bytes held at once for {} bytes of input",
@@ -59,7 +34,7 @@ fn read_all(data: &[u8], name: &str, format: Format) {
 }
 
 fuzz_target!(|data: &[u8]| {
-    read_all(data, "fuzz.csv", Format::Csv);
-    read_all(data, "fuzz.npy", Format::Npy);
-    read_all(data, "fuzz.arrows", Format::ArrowStream);
+    for (name, format) in EVAL_FORMATS {
+        read_all(data, name, format);
+    }
 });

@@ -4,14 +4,14 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 use polbrdf::{DirectionBatch, Engine};
+use polbrdf_fuzz::{paint, EVAL_FORMATS};
 use polbrdf_io::stream::{Format, Geometries, GeometryReader};
 use std::path::Path;
 
 fn read_all(data: &[u8], name: &str, format: Format) {
     let path = Path::new(name);
     let src = Box::new(std::io::Cursor::new(data.to_vec()));
-    let paint = polbrdf::preset("paint").unwrap().build().unwrap();
-    let engine = Engine::new(&paint);
+    let engine = Engine::new(paint());
     let mut reader = match GeometryReader::from_reader(src, path, format) {
         Ok(r) => r,
         Err(e) => return assert!(e.to_string().starts_with(name), "{e}"),
@@ -46,7 +46,7 @@ fn read_all(data: &[u8], name: &str, format: Format) {
 }
 
 fuzz_target!(|data: &[u8]| {
-    read_all(data, "fuzz.csv", Format::Csv);
-    read_all(data, "fuzz.npy", Format::Npy);
-    read_all(data, "fuzz.arrows", Format::ArrowStream);
+    for (name, format) in EVAL_FORMATS {
+        read_all(data, name, format);
+    }
 });

@@ -8,8 +8,8 @@ fuzz_target!(|data: &[u8]| {
         Ok(t) => {
             assert_eq!(t.rows.len(), t.geometries.len());
             assert_eq!(t.rows.len(), t.lines.len());
-            let paint = polbrdf::preset("paint").unwrap().build().unwrap();
-            let f = polbrdf::batch::pbrdf_of(&paint, &t.geometries);
+            let paint = polbrdf_fuzz::paint();
+            let f = polbrdf::batch::pbrdf_of(paint, &t.geometries);
             // The scalars as eval computes them (the engine's one definition).
             let g = &t.geometries;
             let ti: Vec<f64> = g.iter().map(polbrdf::Geometry::theta_i).collect();
@@ -19,7 +19,7 @@ fuzz_target!(|data: &[u8]| {
             let batch = polbrdf::GeometryBatch::new(&ti, &pi, &tr, &pr).unwrap();
             let n = g.len();
             let (mut b, mut d, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-            polbrdf::Engine::new(&paint)
+            polbrdf::Engine::new(paint)
                 .brdf_dolp_aolp_into(&batch, &mut b, &mut d, &mut a)
                 .unwrap();
             let rows: Vec<polbrdf_io::stream::RowResult> = (0..n)

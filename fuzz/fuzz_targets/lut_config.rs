@@ -8,17 +8,10 @@ use polbrdf_io::lut::{parse_lut_config, MAX_ROWS};
 use std::path::Path;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else {
+    // The file names files to read: no devices or pseudo-files.
+    let Some(text) = polbrdf_fuzz::file_text(data) else {
         return;
     };
-    // A configuration names material files; keep the fuzzer away from devices and
-    // pseudo-files, also when spelled with TOML escapes.
-    if ["/dev", "/proc", "/sys", "\\u", "\\U"]
-        .iter()
-        .any(|s| text.contains(s))
-    {
-        return;
-    }
     match parse_lut_config(text, Path::new("fuzz.toml")) {
         Ok(c) => {
             let increasing = |v: &[f64]| {

@@ -8,16 +8,10 @@ use polbrdf::analysis::scene::observed_radiance;
 use std::path::Path;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else {
+    // The file names files to read: no devices or pseudo-files.
+    let Some(text) = polbrdf_fuzz::file_text(data) else {
         return;
     };
-    // As scene_toml: no devices or pseudo-files (a scene names files to read).
-    if ["/dev", "/proc", "/sys", "\\u", "\\U"]
-        .iter()
-        .any(|s| text.contains(s))
-    {
-        return;
-    }
     let Ok(scene) = polbrdf_io::parse_scene(text, Path::new("fuzz.toml")) else {
         return;
     };

@@ -12,38 +12,12 @@
 //! input's length: a header claiming a huge grid allocates none of it.
 #![no_main]
 use libfuzzer_sys::fuzz_target;
-use polbrdf::Material;
 use polbrdf_fit::Measurement;
+use polbrdf_fuzz::{measure_peak, paint, Counting};
 use polbrdf_io::pbsdf::MAX_NODES;
 use polbrdf_tasks::pbsdf::{band_data, plan, AUTO_CELLS};
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::Write;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::OnceLock;
-
-/// The system allocator, counting the bytes held now and the peak since the last reset.
-struct Counting;
-
-static NOW: AtomicUsize = AtomicUsize::new(0);
-static PEAK: AtomicUsize = AtomicUsize::new(0);
-
-// SAFETY: every call is forwarded unchanged to the system allocator; only counters are added.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let p = unsafe { System.alloc(layout) };
-        if !p.is_null() {
-            let now = NOW.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
-            PEAK.fetch_max(now, Ordering::Relaxed);
-        }
-        p
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) };
-        NOW.fetch_sub(layout.size(), Ordering::Relaxed);
-    }
-}
 
 #[global_allocator]
 static ALLOC: Counting = Counting;
@@ -58,14 +32,6 @@ fn budget() -> usize {
     let axes = 3 * MAX_NODES as usize * 12 + MAX_NODES as usize * 2;
     let cells = 4 * AUTO_CELLS * 16 * std::mem::size_of::<Measurement>();
     axes + cells + (1 << 20)
-}
-
-fn paint() -> &'static Material {
-    static PAINT: OnceLock<Material> = OnceLock::new();
-    PAINT.get_or_init(|| {
-        let spec = polbrdf::preset("paint").unwrap();
-        spec.build().or_else(|_| spec.build_at(0.55)).unwrap()
-    })
 }
 
 /// The header's fields lie inside a file of `size` bytes, after the header, without overlap.
@@ -144,14 +110,12 @@ fuzz_target!(|data: &[u8]| {
     }
     let _ = paint();
     let size = check_spans(&fields, header_end, SPARSE_MAX).max(data.len() as u64);
-    let base = NOW.load(Ordering::Relaxed);
-    PEAK.store(base, Ordering::Relaxed);
-    let mut tmp = tempfile::NamedTempFile::new().unwrap();
-    tmp.write_all(data).unwrap();
-    tmp.as_file().set_len(size).unwrap();
-    fit_path(tmp.path());
-    drop(tmp);
-    let peak = PEAK.load(Ordering::Relaxed) - base;
+    let ((), peak) = measure_peak(|| {
+        let mut tmp = tempfile::NamedTempFile::new().unwrap();
+        tmp.write_all(data).unwrap();
+        tmp.as_file().set_len(size).unwrap();
+        fit_path(tmp.path());
+    });
     assert!(
         peak <= budget() + 64 * data.len(),
         "{peak} bytes held at once for {} bytes of input (a file of {size} bytes)",

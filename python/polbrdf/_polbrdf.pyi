@@ -339,20 +339,29 @@ def contrast_task(
     min_separation_deg: float | None,
     max_zenith_deg: float | None,
     refine: bool | None,
-) -> tuple[list[str], NDArray[np.float64], tuple[int, int], str, list[str]]:
+) -> tuple[
+    list[str],
+    NDArray[np.float64],
+    tuple[int, int],
+    str,
+    list[str],
+    list[NDArray[np.float64]],
+]:
     """The task layer's contrast study (``polbrdf contrast``): exactly one of a scene file,
     a scene's text ``(text, source)`` or a collimated ``light`` = (zenith °, azimuth °, stokes);
     ``None``: the task's default. Returns the columns, the table (zenith-major), the grid's
-    (zeniths, azimuths), ``best.json`` as JSON text and the setup's warnings."""
+    (zeniths, azimuths), ``best.json`` as JSON text, the setup's warnings and the grid zeniths
+    (degrees) where either model, the target's and the background's is flagged invalid."""
 
 def hemisphere_task(
     material: str,
     light: _Light,
     spectral: _Spectral,
     grid_deg: tuple[float, float] | None,
-) -> tuple[list[str], NDArray[np.float64], tuple[int, int]]:
+) -> tuple[list[str], NDArray[np.float64], tuple[int, int], NDArray[np.float64]]:
     """The task layer's hemisphere map (``polbrdf map``): the columns, the table
-    (zenith-major) and the grid's (zeniths, azimuths)."""
+    (zenith-major), the grid's (zeniths, azimuths) and the grid zeniths (degrees) where the
+    model is flagged invalid."""
 
 def cli_main(argv: list[str]) -> int:
     """Run the ``polbrdf`` command line (argv[0] the program name); return its exit code."""

@@ -75,7 +75,12 @@ class HemisphereMap:
     - ``columns`` and ``table`` (``(n_theta·n_phi, len(columns))``, zenith-major): the CLI's
       CSV table, column for column;
     - ``maps``: each column but the two angles as an array of shape ``(n_theta, n_phi)``, also
-      reachable as ``result["dolp"]``.
+      reachable as ``result["dolp"]``;
+    - ``invalid_zeniths_deg``: the grid zeniths (degrees, increasing) where the model is
+      flagged invalid — its emissivity outside [0, 1] at some spectral node: it reflects more
+      than it receives there — the ring of dots on ``polbrdf map``'s figures (empty for the
+      ``paper`` form, which has no finite flag). In a :class:`ContrastStudy`, where either
+      model is.
     """
 
     theta_r_deg: _F64
@@ -83,6 +88,7 @@ class HemisphereMap:
     columns: tuple[str, ...]
     table: _F64
     maps: dict[str, _F64] = field(repr=False)
+    invalid_zeniths_deg: _F64 = field(default_factory=lambda: np.empty(0), repr=False)
 
     def __getitem__(self, name: str) -> _F64:
         return self.maps[name]
@@ -112,11 +118,17 @@ class ContrastStudy(HemisphereMap):
     """The result of :func:`contrast`: the maps of ``contrast.csv`` (see :class:`HemisphereMap`;
     in a scene also ``radiance_difference``), ``best`` — the document ``best.json`` holds, as
     a dict: the ranked directions (``best["top"]``), the ranking, materials, grid, source or
-    scene and, in a scene, the polarization-null loci — and the setup's ``warnings`` (valid but
-    probably unintended: the CLI prints them)."""
+    scene and, in a scene, the polarization-null loci — the setup's ``warnings`` (valid but
+    probably unintended: the CLI prints them), and where each model is flagged invalid:
+    ``invalid_zeniths_target_deg`` and ``invalid_zeniths_background_deg`` (marked on the DoLP
+    map of each), ``invalid_zeniths_deg`` where either is (marked on the maps comparing them)."""
 
     best: dict[str, Any] = field(default_factory=dict, repr=False)
     warnings: tuple[str, ...] = ()
+    invalid_zeniths_target_deg: _F64 = field(default_factory=lambda: np.empty(0), repr=False)
+    invalid_zeniths_background_deg: _F64 = field(
+        default_factory=lambda: np.empty(0), repr=False
+    )
 
     @property
     def top(self) -> list[dict[str, float]]:
@@ -260,7 +272,7 @@ def contrast(
                 )
                 e.argument = name  # type: ignore[attr-defined]
                 raise e
-    columns, table, shape, best, warnings = _polbrdf.contrast_task(
+    columns, table, shape, best, warnings, (bad, bad_t, bad_b) = _polbrdf.contrast_task(
         _material("target", target),
         _material("background", background),
         scene_file,
@@ -276,7 +288,7 @@ def contrast(
     )
     theta, phi, maps = _maps(columns, table, shape)
     return ContrastStudy(
-        theta, phi, tuple(columns), table, maps, json.loads(best), tuple(warnings)
+        theta, phi, tuple(columns), table, maps, bad, json.loads(best), tuple(warnings), bad_t, bad_b
     )
 
 
@@ -303,14 +315,14 @@ def hemisphere(
     name = _material("material", material)
     if name is None:
         raise TypeError("`material` must be a material file or a preset name, not None")
-    columns, table, shape = _polbrdf.hemisphere_task(
+    columns, table, shape, invalid = _polbrdf.hemisphere_task(
         name,
         illumination._light(),
         _spectral(wavelength_um, band, band_step_um),
         _grid(grid),
     )
     theta, phi, maps = _maps(columns, table, shape)
-    return HemisphereMap(theta, phi, tuple(columns), table, maps)
+    return HemisphereMap(theta, phi, tuple(columns), table, maps, invalid)
 
 
 class AlbedoTable(NamedTuple):

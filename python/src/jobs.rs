@@ -5,10 +5,11 @@
 //! numbers of `polbrdf check`, `polbrdf emission`, `polbrdf lut`, `polbrdf export` and
 //! `polbrdf fit`, bit for bit. Nothing here computes.
 
-use crate::buffers::{can_allocate, stokes_array};
+use crate::buffers::can_allocate;
 use crate::errors::io_err;
 use crate::material::PyMaterial;
 use crate::tasks::{spectral_request, task_err, Spectral};
+use crate::thermal::emissivity_arrays;
 use numpy::ndarray::{Array2, ArrayD, IxDyn};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayDyn};
 use polbrdf::analysis::emission::Emissivity;
@@ -129,18 +130,18 @@ pub(crate) fn emission_task<'py>(
             None => emission(&request),
         })
         .map_err(|e| task_err(py, &e))?;
-    let n = t.rows.len();
     let e: Vec<Emissivity> = t.rows.iter().map(|r| r.emissivity).collect();
-    let column = |f: fn(&Emissivity) -> f64| PyArray1::from_vec(py, e.iter().map(f).collect());
+    let valid = t.rows.iter().map(|r| r.valid).collect();
+    let (eps, eps_b, eps_s, eps_p, dolp, residual, valid) = emissivity_arrays(py, &e, valid)?;
     Ok((
         PyArray1::from_vec(py, t.rows.iter().map(|r| r.theta_deg).collect()),
-        stokes_array(py, e.iter().map(|e| e.eps), n)?,
-        stokes_array(py, e.iter().map(|e| e.eps_b), n)?,
-        column(Emissivity::eps_s),
-        column(Emissivity::eps_p),
-        column(Emissivity::dolp),
-        column(Emissivity::reciprocity_residual),
-        PyArray1::from_vec(py, t.rows.iter().map(|r| r.valid).collect()),
+        eps,
+        eps_b,
+        eps_s,
+        eps_p,
+        dolp,
+        residual,
+        valid,
     ))
 }
 

@@ -13,7 +13,7 @@ use polbrdf::Albedo;
 use polbrdf_tasks::albedo::{albedo, AlbedoRequest};
 use polbrdf_tasks::contrast::{contrast, ContrastRequest, RankRequest, SourceRequest};
 use polbrdf_tasks::hemisphere::{
-    hemisphere, Hemisphere, HemisphereRequest, LightRequest, DEFAULT_GRID_DEG,
+    deg, hemisphere, Hemisphere, HemisphereRequest, LightRequest, DEFAULT_GRID_DEG,
 };
 use polbrdf_tasks::spectrum::SpectralRequest;
 use polbrdf_tasks::TaskError;
@@ -129,15 +129,22 @@ fn source_request(
 }
 
 /// What [`contrast_task`] returns: the table's columns, the table (one row per grid direction,
-/// zenith-major), the number of zeniths and azimuths of the grid, `best.json` as JSON text and
-/// the setup's warnings.
+/// zenith-major), the number of zeniths and azimuths of the grid, `best.json` as JSON text,
+/// the setup's warnings, and the grid zeniths (degrees) where either model, the target's and
+/// the background's is flagged invalid.
 type ContrastOut<'py> = (
     Vec<&'static str>,
     Bound<'py, PyArray2<f64>>,
     (usize, usize),
     String,
     Vec<String>,
+    [Bound<'py, PyArray1<f64>>; 3],
 );
+
+/// Grid zeniths (rad) in degrees, as the tables and the figures show them.
+fn zeniths_deg<'py>(py: Python<'py>, zeniths: &[f64]) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_vec(py, zeniths.iter().map(|&t| deg(t)).collect())
+}
 
 /// A contrast study (`polbrdf_tasks::contrast`), as `polbrdf contrast` runs it.
 #[pyfunction]
@@ -176,7 +183,20 @@ pub(crate) fn contrast_task<'py>(
     let best = serde_json::to_string(&study.best_json())
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let warnings = study.warnings.iter().map(ToString::to_string).collect();
-    Ok((columns, table(py, rows, width), shape, best, warnings))
+    let invalid = &study.invalid_zeniths;
+    let invalid = [
+        zeniths_deg(py, &invalid.either()),
+        zeniths_deg(py, &invalid.target),
+        zeniths_deg(py, &invalid.background),
+    ];
+    Ok((
+        columns,
+        table(py, rows, width),
+        shape,
+        best,
+        warnings,
+        invalid,
+    ))
 }
 
 /// The `(zeniths, azimuths)` of a zenith-major grid of `n` rows: the azimuths are the rows at
@@ -187,9 +207,14 @@ fn grid_shape(n: usize, rows: &[Vec<f64>]) -> (usize, usize) {
     (n / n_phi, n_phi)
 }
 
-/// What [`hemisphere_task`] returns: the columns, the table (zenith-major) and the grid's
-/// `(zeniths, azimuths)`.
-type HemisphereOut<'py> = (Vec<&'static str>, Bound<'py, PyArray2<f64>>, (usize, usize));
+/// What [`hemisphere_task`] returns: the columns, the table (zenith-major), the grid's
+/// `(zeniths, azimuths)` and the grid zeniths (degrees) where the model is flagged invalid.
+type HemisphereOut<'py> = (
+    Vec<&'static str>,
+    Bound<'py, PyArray2<f64>>,
+    (usize, usize),
+    Bound<'py, PyArray1<f64>>,
+);
 
 /// The hemisphere map of a material (`polbrdf_tasks::hemisphere`), as `polbrdf map` runs it.
 #[pyfunction]
@@ -213,7 +238,13 @@ pub(crate) fn hemisphere_task<'py>(
     let columns = Hemisphere::COLUMNS.to_vec();
     let rows: Vec<Vec<f64>> = map.rows().collect();
     let shape = grid_shape(rows.len(), &rows);
-    Ok((columns, table(py, rows, Hemisphere::COLUMNS.len()), shape))
+    let invalid = zeniths_deg(py, &map.invalid_zeniths);
+    Ok((
+        columns,
+        table(py, rows, Hemisphere::COLUMNS.len()),
+        shape,
+        invalid,
+    ))
 }
 
 /// What [`albedo_task`] returns: the columns of `polbrdf albedo --output` but the last

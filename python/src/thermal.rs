@@ -262,6 +262,19 @@ pub(crate) fn emissivity_flat<'py>(
     let e = py
         .detach(|| emissivity_batch(m, t, degrees, wl))
         .map_err(|e| element_err(py, &e))?;
+    let valid = e.iter().map(Emissivity::is_valid).collect();
+    emissivity_arrays(py, &e, valid)
+}
+
+/// The arrays of emissivities `e` (one per row) and their validity flags `valid`: `(eps (n, 4),
+/// eps_b (n, 4), eps_s, eps_p, dolp, reciprocity_residual, valid)` — [`emissivity_flat`]'s and
+/// `polbrdf_tasks::emission`'s (`jobs::emission_task`) one layout.
+pub(crate) fn emissivity_arrays<'py>(
+    py: Python<'py>,
+    e: &[Emissivity],
+    valid: Vec<bool>,
+) -> PyResult<Emitted<'py>> {
+    let n = e.len();
     let column = |f: fn(&Emissivity) -> f64| PyArray1::from_vec(py, e.iter().map(f).collect());
     Ok((
         stokes_array(py, e.iter().map(|e| e.eps), n)?,
@@ -270,6 +283,6 @@ pub(crate) fn emissivity_flat<'py>(
         column(Emissivity::eps_p),
         column(Emissivity::dolp),
         column(Emissivity::reciprocity_residual),
-        PyArray1::from_vec(py, e.iter().map(Emissivity::is_valid).collect()),
+        PyArray1::from_vec(py, valid),
     ))
 }

@@ -142,6 +142,41 @@ def test_the_hemisphere_map_is_the_cli_s_map_csv(tmp_path: Path) -> None:
     assert_same_bits(table, m.table)
 
 
+def flagged(name: str) -> np.ndarray:
+    """The 1° grid zeniths where `name`'s emissivity leaves [0, 1] (its validity flag)."""
+    t = np.arange(90.0)
+    return t[~polbrdf.emissivity(polbrdf.Material.preset(name), t).valid]
+
+
+@needs_cli
+def test_the_invalid_zeniths_are_those_the_cli_marks(tmp_path: Path) -> None:
+    # Paint reflects more than it receives seen near grazing; glass does not.
+    paint, glass = flagged("paint"), flagged("glass")
+    assert paint.size > 0 and paint[0] > 80
+    light = polbrdf.Illumination(sun_zenith_deg=40)
+    m = polbrdf.hemisphere("paint", light, grid=(1, 30))
+    assert np.array_equal(m.invalid_zeniths_deg, paint)
+    s = polbrdf.contrast("paint", "glass", light, grid=(1, 30))
+    assert np.array_equal(s.invalid_zeniths_target_deg, paint)
+    assert np.array_equal(s.invalid_zeniths_background_deg, glass)
+    assert np.array_equal(s.invalid_zeniths_deg, np.union1d(paint, glass))
+    # The CLI's summary of both jobs names the same zeniths.
+    assert CLI is not None
+    for args, line in [
+        (["map", "--material", "paint"], "model flagged"),
+        (["contrast", "--target", "paint", "--background", "glass"], "target model flagged"),
+    ]:
+        r = subprocess.run(
+            [str(CLI), *args, "--sun-zenith-deg", "40", "--grid-deg", "1,30",
+             "--out", str(tmp_path / args[0])],
+            capture_output=True, text=True, check=True,
+        )  # fmt: skip
+        assert (
+            f"{line} invalid (emissivity outside [0, 1]) at {paint.size} zenith(s) from "
+            f"θr = {paint[0]:g}°"
+        ) in r.stdout, r.stdout
+
+
 def sun() -> polbrdf.Illumination:
     return polbrdf.Illumination(sun_zenith_deg=50)
 

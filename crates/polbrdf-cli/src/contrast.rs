@@ -5,8 +5,8 @@
 use crate::closed_set;
 use crate::error::CliError;
 use crate::figures::{
-    angle_scale, dolp_scale, input_stokes, light_marks, polar_grid, render_all, short, single,
-    PANEL,
+    angle_scale, dolp_scale, input_stokes, invalid_marks, light_marks, polar_grid, render_all,
+    short, single, INVALID_LEGEND_SHORT, PANEL,
 };
 use crate::output::{csv, write_all, OutputFile};
 use crate::values::{self, Range};
@@ -165,6 +165,19 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
         study.map.grid.len(),
         elapsed.as_secs_f64() * 1e3
     );
+    for (which, zeniths) in [
+        ("target", &study.invalid_zeniths.target),
+        ("background", &study.invalid_zeniths.background),
+    ] {
+        if let Some(t) = zeniths.first() {
+            println!(
+                "  {which} model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) \
+                 from θr = {}° (marked on the maps)",
+                zeniths.len(),
+                short(deg(*t))
+            );
+        }
+    }
     let symmetric = study.problem.is_azimuth_independent();
     if let (Some(n), true) = (&study.nulls, symmetric) {
         println!(
@@ -241,11 +254,48 @@ fn ranked_marks(top: &[ContrastSample], by: Ranking) -> Vec<PolarMark> {
         .collect()
 }
 
+/// The marks of the maps beside the null loci.
+struct Marks {
+    /// The target's DoLP map: the light, where its model is flagged invalid.
+    light_t: Vec<PolarMark>,
+    /// The background's DoLP map, likewise.
+    light_b: Vec<PolarMark>,
+    /// The maps comparing the two: the light, where either model is flagged invalid.
+    light: Vec<PolarMark>,
+    /// The map of the ranking score: the light, the ranked directions, where either model is
+    /// flagged invalid (last: the legend lists the ranked directions first).
+    ranked: Vec<PolarMark>,
+}
+
+fn marks(study: &ContrastStudy) -> Marks {
+    let sun = study
+        .problem
+        .light()
+        .map_or_else(Vec::new, |l| light_marks(&l));
+    let invalid = &study.invalid_zeniths;
+    let with_invalid = |mut marks: Vec<PolarMark>, zeniths: &[f64]| -> Vec<PolarMark> {
+        marks.extend(invalid_marks(zeniths, INVALID_LEGEND_SHORT));
+        marks
+    };
+    let either = invalid.either();
+    let ranked = sun
+        .iter()
+        .cloned()
+        .chain(ranked_marks(&study.top, study.options.by))
+        .collect();
+    Marks {
+        light_t: with_invalid(sun.clone(), &invalid.target),
+        light_b: with_invalid(sun.clone(), &invalid.background),
+        light: with_invalid(sun, &either),
+        ranked: with_invalid(ranked, &either),
+    }
+}
+
 /// The polar maps (PNG and SVG) of a study.
 // Over 100 lines: one panel after the other, sharing the colour limits and marks computed at
 // the top; split, the pieces would pass them all around.
 fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), CliError> {
-    let (map, top, opts, problem) = (&study.map, &study.top, &study.options, &study.problem);
+    let (map, opts, problem) = (&study.map, &study.options, &study.problem);
     let (t_name, b_name) = (&study.target.name, &study.background.name);
     let nulls = study
         .nulls
@@ -255,12 +305,12 @@ fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), Cli
     let grid = &map.grid;
     let values =
         |f: fn(&ContrastSample) -> f64| -> Vec<f64> { map.samples.iter().map(f).collect() };
-    let light = problem.light().map_or_else(Vec::new, |l| light_marks(&l));
-    let ranked: Vec<PolarMark> = light
-        .iter()
-        .cloned()
-        .chain(ranked_marks(top, opts.by))
-        .collect();
+    let Marks {
+        light_t,
+        light_b,
+        light,
+        ranked,
+    } = marks(study);
     let input = problem
         .light()
         .map_or_else(String::new, |l| input_stokes(&l, (" (input S = ", ")")));
@@ -319,13 +369,13 @@ fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), Cli
         title: format!("DoLP — target: {t_name}{input}"),
         grid: polar_grid(grid, dt_values)?,
         scale: dolp_scale(),
-        marks: light.iter().cloned().chain(null_t).collect(),
+        marks: light_t.into_iter().chain(null_t).collect(),
     };
     let dolp_b = PolarPanel {
         title: format!("DoLP — background: {b_name}"),
         grid: polar_grid(grid, db_values)?,
         scale: dolp_scale(),
-        marks: light.iter().cloned().chain(null_b).collect(),
+        marks: light_b.into_iter().chain(null_b).collect(),
     };
     let delta = values(ContrastSample::delta_dolp);
     let lim = nice_ceil(max_abs(&delta).max(1e-3));

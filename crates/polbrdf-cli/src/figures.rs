@@ -41,12 +41,17 @@ pub fn light_marks(light: &Illumination) -> Vec<PolarMark> {
     ]
 }
 
-/// The legend of [`invalid_marks`].
+/// The legend of [`invalid_marks`] (`polbrdf map`).
 pub const INVALID_LEGEND: &str = "model invalid here (emissivity outside [0, 1])";
 
+/// The short legend of [`invalid_marks`] where the legend row also lists the ranked
+/// directions (`polbrdf contrast`: the long one leaves them no room in a 620-pixel panel; the
+/// summary line says what the flag is).
+pub const INVALID_LEGEND_SHORT: &str = "model invalid here";
+
 /// Marks on the rings of the zeniths (rad) where the model is flagged invalid (issue 36;
-/// `polbrdf_tasks::hemisphere::invalid_zeniths`): a dot every 15° of azimuth.
-pub fn invalid_marks(zeniths: &[f64]) -> Vec<PolarMark> {
+/// `polbrdf_tasks::hemisphere::invalid_zeniths`): a dot every 15° of azimuth, with `legend`.
+pub fn invalid_marks(zeniths: &[f64], legend: &str) -> Vec<PolarMark> {
     zeniths
         .iter()
         .flat_map(|&t| {
@@ -55,7 +60,7 @@ pub fn invalid_marks(zeniths: &[f64]) -> Vec<PolarMark> {
                 phi_deg: 15.0 * f64::from(k),
                 shape: MarkShape::Dot,
                 label: String::new(),
-                legend: INVALID_LEGEND.into(),
+                legend: legend.into(),
             })
         })
         .collect()

@@ -4,7 +4,7 @@
 use crate::error::CliError;
 use crate::figures::{
     angle_scale, dolp_scale, input_stokes, invalid_marks, light_marks, log_limits, polar_grid,
-    render_all, short, single, PANEL,
+    render_all, short, single, INVALID_LEGEND, PANEL,
 };
 use crate::output::{csv, write_all, OutputFile};
 use crate::view::ViewArgs;
@@ -77,7 +77,7 @@ fn map_files(map: &Hemisphere, name: &str) -> Result<Vec<OutputFile>, CliError> 
         .map(|s| s.stokes.aolp().to_degrees())
         .collect();
     let mut marks = light_marks(light);
-    marks.extend(invalid_marks(&map.invalid_zeniths));
+    marks.extend(invalid_marks(&map.invalid_zeniths, INVALID_LEGEND));
     let input = input_stokes(light, (", input S = (", ")"));
     let (lo, hi) = log_limits(&s0);
     let (brdf_title, brdf_label) = if unpolarized {

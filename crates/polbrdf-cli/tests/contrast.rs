@@ -562,3 +562,63 @@ fn a_piped_standard_error_gets_no_progress_bar() {
         );
     }
 }
+
+#[test]
+fn the_maps_mark_where_each_model_is_flagged_invalid() {
+    // Paint reflects more than it receives seen near grazing (its emissivity leaves [0, 1]
+    // from 88°); glass only at 89°, off this 2° grid. As `polbrdf map` marks paint's map, the target's DoLP map and the maps
+    // comparing the two carry the ring of dots; the background's does not (issue 36 review).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("inv");
+    let o = polbrdf(&[
+        "contrast",
+        "--target",
+        "paint",
+        "--background",
+        "glass",
+        "--sun-zenith-deg",
+        "40",
+        "--grid-deg",
+        "2,30",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let flagged = |name: &str| -> Vec<f64> {
+        let m = polbrdf::preset(name).unwrap().build().unwrap();
+        (0..45)
+            .map(|k| 2.0 * f64::from(k))
+            .filter(|t| {
+                !polbrdf::analysis::emissivity(&m, t.to_radians())
+                    .unwrap()
+                    .is_valid()
+            })
+            .collect()
+    };
+    let (paint, glass) = (flagged("paint"), flagged("glass"));
+    assert!(!paint.is_empty() && glass.is_empty(), "{paint:?} {glass:?}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stdout.contains(&format!(
+            "target model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = \
+             {}° (marked on the maps)",
+            paint.len(),
+            paint[0]
+        )),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("background model flagged"), "{stdout}");
+    let legend = "model invalid here";
+    for (figure, marked) in [
+        ("dolp_target", true),
+        ("dolp_background", false),
+        ("delta_dolp", true),
+        ("intensity_ratio", true),
+        ("aolp_difference", true),
+        ("polarization_contrast", true),
+        ("overview", true),
+    ] {
+        let svg = std::fs::read_to_string(out.join(format!("{figure}.svg"))).unwrap();
+        assert_eq!(svg.contains(legend), marked, "{figure}.svg");
+    }
+}

@@ -6,7 +6,7 @@
 
 use crate::error::{Error, Result};
 use crate::polar::{centered, draw_color_bar, pt, ColorScale, DrawResult};
-use crate::render::{draw_err, encode_png, insert_after_background, svg_image};
+use crate::render::{layered_png, layered_svg, Layered, Raster};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -128,23 +128,29 @@ impl HeatmapFigure {
         }
     }
 
-    /// Panel `k`'s raster: its top-left corner, size and RGB bytes.
-    fn raster(&self, k: usize) -> (i64, i64, u32, u32, Vec<u8>) {
+    /// Panel `k`'s raster: one screen pixel per block of the data pixel it shows.
+    fn raster(&self, k: usize) -> Raster {
         let p = &self.panels[k];
         let at = self.placement(k);
         let w = (at.scale * p.width as f64).round().max(1.0) as u32;
         let h = (at.scale * p.height as f64).round().max(1.0) as u32;
-        let mut rgb = Vec::with_capacity(w as usize * h as usize * 3);
+        let mut pixels = Vec::with_capacity(w as usize * h as usize);
         for y in 0..h {
             let row = ((f64::from(y) + 0.5) / at.scale) as usize;
             for x in 0..w {
                 let col = ((f64::from(x) + 0.5) / at.scale) as usize;
                 let v = p.values[row.min(p.height - 1) * p.width + col.min(p.width - 1)];
                 let c = p.scale.colormap.rgb(p.scale.position(p.scale.forward(v)));
-                rgb.extend_from_slice(&[c.0, c.1, c.2]);
+                pixels.push(Some([c.0, c.1, c.2]));
             }
         }
-        (at.x0 as i64, at.y0 as i64, w, h, rgb)
+        Raster {
+            x0: at.x0 as i64,
+            y0: at.y0 as i64,
+            w,
+            h,
+            pixels,
+        }
     }
 
     /// The figure as a PNG file.
@@ -152,28 +158,7 @@ impl HeatmapFigure {
     /// # Errors
     /// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
     pub fn png(&self) -> Result<Vec<u8>> {
-        crate::font::register()?;
-        let (w, h) = self.size();
-        let mut rgb = vec![255u8; (w as usize) * (h as usize) * 3];
-        for k in 0..self.panels.len() {
-            let (x0, y0, iw, ih, pixels) = self.raster(k);
-            for y in 0..ih as i64 {
-                for x in 0..iw as i64 {
-                    let (fx, fy) = (x0 + x, y0 + y);
-                    if fx >= 0 && fy >= 0 && (fx as u32) < w && (fy as u32) < h {
-                        let src = 3 * (y as usize * iw as usize + x as usize);
-                        let dst = 3 * (fy as usize * w as usize + fx as usize);
-                        rgb[dst..dst + 3].copy_from_slice(&pixels[src..src + 3]);
-                    }
-                }
-            }
-        }
-        {
-            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-            self.draw_overlay(&root).map_err(draw_err)?;
-            root.present().map_err(draw_err)?;
-        }
-        encode_png(&rgb, w, h)
+        layered_png(self)
     }
 
     /// The figure as an SVG document (the images are embedded PNG rasters).
@@ -181,21 +166,17 @@ impl HeatmapFigure {
     /// # Errors
     /// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
     pub fn svg(&self) -> Result<String> {
-        crate::font::register()?;
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, self.size()).into_drawing_area();
-            root.fill(&WHITE).map_err(draw_err)?;
-            self.draw_overlay(&root).map_err(draw_err)?;
-            root.present().map_err(draw_err)?;
-        }
-        let mut images = String::new();
-        for k in 0..self.panels.len() {
-            let (x0, y0, w, h, rgb) = self.raster(k);
-            images += &svg_image(x0 as i32, y0 as i32, w, h, &encode_png(&rgb, w, h)?);
-        }
-        insert_after_background(&mut text, &images)?;
-        Ok(text)
+        layered_svg(self)
+    }
+}
+
+impl Layered for HeatmapFigure {
+    fn size(&self) -> (u32, u32) {
+        HeatmapFigure::size(self)
+    }
+
+    fn rasters(&self) -> Vec<Raster> {
+        (0..self.panels.len()).map(|k| self.raster(k)).collect()
     }
 
     fn draw_overlay<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult

@@ -12,7 +12,7 @@
 use crate::colormap::Colormap;
 use crate::error::{Error, Result};
 use crate::font::FAMILY;
-use crate::render::{draw_err, encode_png, insert_after_background, svg_image};
+use crate::render::{layered_png, layered_svg, Layered, Raster};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -481,30 +481,7 @@ impl PolarFigure {
     /// # Errors
     /// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
     pub fn png(&self) -> Result<Vec<u8>> {
-        crate::font::register()?;
-        let (w, h) = self.size();
-        let mut rgb = vec![255u8; (w as usize) * (h as usize) * 3];
-        for (k, p) in self.panels.iter().enumerate() {
-            let (x0, y0, side, pixels) = raster(p, &self.disk(k));
-            for row in 0..side {
-                for col in 0..side {
-                    let (x, y) = (x0 + col as i64, y0 + row as i64);
-                    let Some(c) = pixels[(row * side + col) as usize] else {
-                        continue;
-                    };
-                    if x >= 0 && y >= 0 && (x as u32) < w && (y as u32) < h {
-                        let at = 3 * (y as usize * w as usize + x as usize);
-                        rgb[at..at + 3].copy_from_slice(&[c.0, c.1, c.2]);
-                    }
-                }
-            }
-        }
-        {
-            let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
-            self.draw_overlay(&root).map_err(draw_err)?;
-            root.present().map_err(draw_err)?;
-        }
-        encode_png(&rgb, w, h)
+        layered_png(self)
     }
 
     /// The figure as an SVG document (the maps are embedded PNG rasters).
@@ -512,27 +489,19 @@ impl PolarFigure {
     /// # Errors
     /// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
     pub fn svg(&self) -> Result<String> {
-        crate::font::register()?;
-        let mut text = String::new();
-        {
-            let root = SVGBackend::with_string(&mut text, self.size()).into_drawing_area();
-            root.fill(&WHITE).map_err(draw_err)?;
-            self.draw_overlay(&root).map_err(draw_err)?;
-            root.present().map_err(draw_err)?;
-        }
-        let mut images = String::new();
-        for (k, p) in self.panels.iter().enumerate() {
-            let (x0, y0, side, pixels) = raster(p, &self.disk(k));
-            let mut rgb = Vec::with_capacity((side * side * 3) as usize);
-            for c in &pixels {
-                let c = c.unwrap_or(WHITE);
-                rgb.extend_from_slice(&[c.0, c.1, c.2]);
-            }
-            let png = encode_png(&rgb, side, side)?;
-            images += &svg_image(x0 as i32, y0 as i32, side, side, &png);
-        }
-        insert_after_background(&mut text, &images)?;
-        Ok(text)
+        layered_svg(self)
+    }
+}
+
+impl Layered for PolarFigure {
+    fn size(&self) -> (u32, u32) {
+        PolarFigure::size(self)
+    }
+
+    fn rasters(&self) -> Vec<Raster> {
+        (0..self.panels.len())
+            .map(|k| raster(&self.panels[k], &self.disk(k)))
+            .collect()
     }
 
     fn draw_overlay<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
@@ -559,9 +528,8 @@ pub fn panel_disk((w, h): (u32, u32)) -> Disk {
     }
 }
 
-/// The map's pixels: top-left corner, side length and colour of each pixel of the disk's
-/// bounding square (`None` outside the disk).
-fn raster(p: &PolarPanel, disk: &Disk) -> (i64, i64, u32, Vec<Option<RGBColor>>) {
+/// The map's pixels: the disk's bounding square (`None` outside the disk).
+fn raster(p: &PolarPanel, disk: &Disk) -> Raster {
     let x0 = (disk.cx - disk.r).floor() as i64 - 1;
     let y0 = (disk.cy - disk.r).floor() as i64 - 1;
     let side = (2.0 * disk.r).ceil() as u32 + 3;
@@ -575,11 +543,18 @@ fn raster(p: &PolarPanel, disk: &Disk) -> (i64, i64, u32, Vec<Option<RGBColor>>)
             );
             out.push(disk.direction(x, y).map(|(theta, phi)| {
                 let v = p.grid.interpolate(&values, theta, phi, p.scale.period);
-                p.scale.colormap.rgb(p.scale.position(v))
+                let c = p.scale.colormap.rgb(p.scale.position(v));
+                [c.0, c.1, c.2]
             }));
         }
     }
-    (x0, y0, side, out)
+    Raster {
+        x0,
+        y0,
+        w: side,
+        h: side,
+        pixels: out,
+    }
 }
 
 pub(crate) fn font(size: f64) -> TextStyle<'static> {

@@ -2,6 +2,9 @@
 //! [`render_files`]), PNG bytes from an RGB buffer, and raster images embedded in SVG.
 
 use crate::error::{Error, Result};
+use crate::polar::DrawResult;
+use plotters::coord::Shift;
+use plotters::prelude::*;
 use rayon::prelude::*;
 
 /// A figure that renders itself to a PNG file and an SVG document, in memory.
@@ -66,6 +69,89 @@ pub fn render_files(
             }
         })
         .collect()
+}
+
+/// A raster under a figure's vector overlay: its top-left corner, its size and each pixel's
+/// colour, row-major (`None`: the white background shows).
+pub(crate) struct Raster {
+    pub x0: i64,
+    pub y0: i64,
+    pub w: u32,
+    pub h: u32,
+    pub pixels: Vec<Option<[u8; 3]>>,
+}
+
+/// A figure of rasters (the maps, the images) under vector text and lines: the polar maps
+/// ([`crate::PolarFigure`]) and the images ([`crate::HeatmapFigure`]) render through
+/// [`layered_png`] and [`layered_svg`].
+pub(crate) trait Layered {
+    /// The figure's size, pixels.
+    fn size(&self) -> (u32, u32);
+    /// The rasters, drawn in this order.
+    fn rasters(&self) -> Vec<Raster>;
+    /// Everything drawn above the rasters.
+    fn draw_overlay<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static;
+}
+
+/// A layered figure as a PNG file: the rasters drawn into a white bitmap (clipped to it), the
+/// overlay above them.
+///
+/// # Errors
+/// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
+pub(crate) fn layered_png(fig: &impl Layered) -> Result<Vec<u8>> {
+    crate::font::register()?;
+    let (w, h) = fig.size();
+    let mut rgb = vec![255u8; (w as usize) * (h as usize) * 3];
+    for r in fig.rasters() {
+        for row in 0..i64::from(r.h) {
+            for col in 0..i64::from(r.w) {
+                let (x, y) = (r.x0 + col, r.y0 + row);
+                let Some(c) = r.pixels[(row * i64::from(r.w) + col) as usize] else {
+                    continue;
+                };
+                if x >= 0 && y >= 0 && (x as u32) < w && (y as u32) < h {
+                    let at = 3 * (y as usize * w as usize + x as usize);
+                    rgb[at..at + 3].copy_from_slice(&c);
+                }
+            }
+        }
+    }
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        fig.draw_overlay(&root).map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    encode_png(&rgb, w, h)
+}
+
+/// A layered figure as an SVG document: the overlay as vector elements above the rasters,
+/// each embedded as a PNG `<image>` (its transparent pixels white).
+///
+/// # Errors
+/// [`Error::Font`], [`Error::Draw`] or [`Error::Encode`].
+pub(crate) fn layered_svg(fig: &impl Layered) -> Result<String> {
+    crate::font::register()?;
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, fig.size()).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        fig.draw_overlay(&root).map_err(draw_err)?;
+        root.present().map_err(draw_err)?;
+    }
+    let mut images = String::new();
+    for r in fig.rasters() {
+        let rgb: Vec<u8> = r
+            .pixels
+            .iter()
+            .flat_map(|c| c.unwrap_or([255, 255, 255]))
+            .collect();
+        let png = encode_png(&rgb, r.w, r.h)?;
+        images += &svg_image(r.x0 as i32, r.y0 as i32, r.w, r.h, &png);
+    }
+    insert_after_background(&mut text, &images)?;
+    Ok(text)
 }
 
 /// Maps a plotters drawing error to [`Error::Draw`].

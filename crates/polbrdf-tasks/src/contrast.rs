@@ -4,7 +4,7 @@
 //! values, with the `contrast.csv` table and the `best.json` document built from them.
 
 use crate::error::{TaskError, TaskResult};
-use crate::hemisphere::{deg, view_grid, LightRequest};
+use crate::hemisphere::{deg, invalid_zeniths, view_grid, LightRequest};
 use crate::scene::{contrast_warnings, observer, read_scene, Warning};
 use crate::spectrum::{materials_at, NamedMaterial, SpectralRequest, SpectrumSource};
 use polbrdf::analysis::contrast::{
@@ -12,7 +12,7 @@ use polbrdf::analysis::contrast::{
 };
 use polbrdf::analysis::scene::null_temperature;
 use polbrdf::analysis::sky::Quality;
-use polbrdf::Spectrum;
+use polbrdf::{Material, Spectrum};
 use polbrdf_io::Scene;
 use std::path::PathBuf;
 
@@ -139,6 +139,33 @@ pub struct NullLoci {
     pub uniform_sky_temperature_k: Option<f64>,
 }
 
+/// The grid zeniths (rad) where each material's model is flagged invalid
+/// ([`crate::hemisphere::invalid_zeniths`]: its emissivity outside `[0, 1]` at some spectral
+/// node), as `polbrdf map` marks them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct InvalidZeniths {
+    /// The target's.
+    pub target: Vec<f64>,
+    /// The background's.
+    pub background: Vec<f64>,
+}
+
+impl InvalidZeniths {
+    /// The zeniths where either model is flagged invalid, increasing: where a comparison of
+    /// the two (ΔDoLP, the intensity ratio, …) rests on an invalid model.
+    pub fn either(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = self
+            .target
+            .iter()
+            .chain(&self.background)
+            .copied()
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    }
+}
+
 /// The result of [`contrast`].
 #[derive(Debug, Clone)]
 pub struct ContrastStudy {
@@ -163,6 +190,8 @@ pub struct ContrastStudy {
     pub nulls: Option<NullLoci>,
     /// The setup's warnings.
     pub warnings: Vec<Warning>,
+    /// Where each model is flagged invalid.
+    pub invalid_zeniths: InvalidZeniths,
 }
 
 /// Resolves a material: the request's, else the scene table's.
@@ -411,6 +440,7 @@ fn study(
         Setting::Scene(s) => Some(null_loci(&problem, &map, s)),
         Setting::Collimated { .. } => None,
     };
+    let invalid_zeniths = invalid_regions(&problem, &setting, (&target, &background), &map.grid);
     ContrastStudy {
         target,
         background,
@@ -422,6 +452,43 @@ fn study(
         options,
         nulls,
         warnings,
+        invalid_zeniths,
+    }
+}
+
+/// Where each model is flagged invalid, at the spectral nodes the problem evaluates it at: the
+/// mean's nodes under a collimated source, the scene's integral nodes in a scene.
+fn invalid_regions(
+    problem: &Contrast,
+    setting: &Setting,
+    (target, background): (&NamedMaterial, &NamedMaterial),
+    grid: &polbrdf::ViewGrid,
+) -> InvalidZeniths {
+    match setting {
+        Setting::Collimated { .. } => {
+            let nodes = problem.nodes();
+            let t: Vec<&Material> = nodes.iter().map(|(_, t, _)| t).collect();
+            let b: Vec<&Material> = nodes.iter().map(|(_, _, b)| b).collect();
+            InvalidZeniths {
+                target: invalid_zeniths(&t, grid),
+                background: invalid_zeniths(&b, grid),
+            }
+        }
+        Setting::Scene(scene) => {
+            // The observers were built from the same materials at the same nodes, so these
+            // build too; a material that did not would have no flag.
+            let flagged = |m: &NamedMaterial| {
+                let nodes = scene.spectrum.integral_nodes(&[&m.spec]);
+                Spectrum::materials(&m.spec, &nodes).map_or_else(
+                    |_| Vec::new(),
+                    |ms| invalid_zeniths(&ms.iter().collect::<Vec<_>>(), grid),
+                )
+            };
+            InvalidZeniths {
+                target: flagged(target),
+                background: flagged(background),
+            }
+        }
     }
 }
 

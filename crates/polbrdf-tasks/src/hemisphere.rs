@@ -153,7 +153,8 @@ pub fn hemisphere(request: &HemisphereRequest) -> TaskResult<Hemisphere> {
     let material = NamedMaterial::load(&request.material, "material")?;
     let nodes = material_at(&material, spectrum.as_ref())?;
     let samples = hemisphere_mean(&nodes, &light, &grid);
-    let invalid_zeniths = invalid_zeniths(&nodes, &grid);
+    let materials: Vec<&Material> = nodes.iter().map(|(_, m)| m).collect();
+    let invalid_zeniths = invalid_zeniths(&materials, &grid);
     Ok(Hemisphere {
         material,
         spectrum,
@@ -166,18 +167,18 @@ pub fn hemisphere(request: &HemisphereRequest) -> TaskResult<Hemisphere> {
 
 /// The grid zeniths (rad) where the model is flagged invalid: the material's emissivity toward
 /// that zenith — by reciprocity one minus the reflectance of light arriving from there — lies
-/// outside `[0, 1]` for some polarization at some node of the spectrum
-/// (`Emissivity::is_valid`, docs/model.md §10, §16): the model reflects more than it receives
-/// there. Empty for the `paper` form, whose hemispherical integral diverges (no finite flag).
-/// One emissivity per zenith and node (a hemispherical integral each).
-pub fn invalid_zeniths(nodes: &[(f64, Material)], grid: &ViewGrid) -> Vec<f64> {
+/// outside `[0, 1]` for some polarization at some node of the spectrum (`nodes`: the material
+/// at each node; `Emissivity::is_valid`, docs/model.md §10, §16): the model reflects more than
+/// it receives there. Empty for the `paper` form, whose hemispherical integral diverges (no
+/// finite flag). At most one emissivity per zenith and node (a hemispherical integral each).
+pub fn invalid_zeniths(nodes: &[&Material], grid: &ViewGrid) -> Vec<f64> {
     grid.thetas()
         .into_iter()
         .filter(|&t| t < std::f64::consts::FRAC_PI_2)
         .filter(|&t| {
             nodes
                 .iter()
-                .any(|(_, m)| emissivity(m, t).is_ok_and(|e| !e.is_valid()))
+                .any(|m| emissivity(m, t).is_ok_and(|e| !e.is_valid()))
         })
         .collect()
 }

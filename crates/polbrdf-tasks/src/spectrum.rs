@@ -175,24 +175,7 @@ impl NamedMaterial {
     /// [`TaskError::Invalid`] naming `field` for a malformed file or an unknown preset;
     /// [`TaskError::Io`] when the file cannot be read.
     pub fn load(arg: &str, field: &str) -> TaskResult<Self> {
-        let spec = polbrdf_io::load_material(arg).map_err(|e| {
-            if e.is_data_error() {
-                TaskError::invalid(field, e.to_string())
-            } else {
-                TaskError::Io(e)
-            }
-        })?;
-        let name = spec.name.clone().unwrap_or_else(|| {
-            Path::new(arg)
-                .file_stem()
-                .map_or_else(|| arg.to_string(), |s| s.to_string_lossy().into_owned())
-        });
-        Ok(Self {
-            spec,
-            name,
-            source: arg.to_string(),
-            field: field.to_string(),
-        })
+        Self::named(polbrdf_io::load_material(arg), arg, field)
     }
 
     /// Parses the text of a material file named `file_name` (in error messages, and the stem
@@ -204,7 +187,22 @@ impl NamedMaterial {
     /// [`TaskError::Invalid`] naming `field` for malformed text; [`TaskError::Io`] when a
     /// refractive-index file it names cannot be read.
     pub fn parse(text: &str, file_name: &str, field: &str) -> TaskResult<Self> {
-        let spec = polbrdf_io::parse_material(text, Path::new(file_name)).map_err(|e| {
+        Self::named(
+            polbrdf_io::parse_material(text, Path::new(file_name)),
+            file_name,
+            field,
+        )
+    }
+
+    /// The material `read` from `source` (a file, preset or file name) for the request field
+    /// `field`: a malformed material names the field, a file that cannot be read is an I/O
+    /// error; the display name is the `name` key, else the stem of `source`.
+    fn named(
+        read: polbrdf_io::Result<MaterialSpec>,
+        source: &str,
+        field: &str,
+    ) -> TaskResult<Self> {
+        let spec = read.map_err(|e| {
             if e.is_data_error() {
                 TaskError::invalid(field, e.to_string())
             } else {
@@ -212,15 +210,14 @@ impl NamedMaterial {
             }
         })?;
         let name = spec.name.clone().unwrap_or_else(|| {
-            Path::new(file_name).file_stem().map_or_else(
-                || file_name.to_string(),
-                |s| s.to_string_lossy().into_owned(),
-            )
+            Path::new(source)
+                .file_stem()
+                .map_or_else(|| source.to_string(), |s| s.to_string_lossy().into_owned())
         });
         Ok(Self {
             spec,
             name,
-            source: file_name.to_string(),
+            source: source.to_string(),
             field: field.to_string(),
         })
     }

@@ -1,10 +1,10 @@
 //! Contrast studies: a material against itself, the ranking's order and separation, a scene
 //! symmetric about the normal, the request's validation.
 
-use crate::common::{band_scene, example};
+use crate::common::{band_scene, example, write};
 use polbrdf::analysis::contrast::{separation, Ranking};
 use polbrdf_tasks::contrast::{contrast, ContrastRequest, RankRequest, SourceRequest};
-use polbrdf_tasks::hemisphere::LightRequest;
+use polbrdf_tasks::hemisphere::{self, LightRequest};
 use polbrdf_tasks::spectrum::SpectralRequest;
 use polbrdf_tasks::TaskError;
 
@@ -265,4 +265,86 @@ fn a_scene_study_reports_its_progress_to_completion_with_the_same_numbers() {
     .unwrap();
     assert_eq!(calls.len(), 1);
     assert_eq!(calls[0].0, calls[0].1);
+}
+
+/// The grid zeniths (1° steps, degrees) where `material`'s emissivity leaves [0, 1]: the
+/// model's validity flag evaluated directly.
+fn flagged_by_emissivity(material: &str) -> Vec<f64> {
+    let m = polbrdf::preset(material).unwrap().build().unwrap();
+    (0..90)
+        .map(f64::from)
+        .filter(|t| {
+            !polbrdf::analysis::emissivity(&m, t.to_radians())
+                .unwrap()
+                .is_valid()
+        })
+        .collect()
+}
+
+#[test]
+fn each_model_is_flagged_invalid_where_its_emissivity_leaves_0_1_as_the_map_flags_it() {
+    // Paint reflects more than it receives seen near grazing (88° and 89° on a 1° grid); glass
+    // does not. The study flags each material's own zeniths, as `polbrdf map` flags them.
+    let mut r = collimated("paint", "glass", RankRequest::default());
+    r.grid_deg = (1.0, 30.0);
+    let s = contrast(&r).unwrap();
+    let deg = |v: &[f64]| -> Vec<f64> { v.iter().map(|&t| hemisphere::deg(t)).collect() };
+    let paint = flagged_by_emissivity("paint");
+    assert!(!paint.is_empty() && paint[0] > 80.0, "{paint:?}");
+    assert_eq!(deg(&s.invalid_zeniths.target), paint);
+    assert_eq!(
+        deg(&s.invalid_zeniths.background),
+        flagged_by_emissivity("glass")
+    );
+    let map = hemisphere::hemisphere(&hemisphere::HemisphereRequest {
+        material: "paint".into(),
+        light: LightRequest::sun(40.0, 30.0),
+        grid_deg: (1.0, 30.0),
+        spectral: SpectralRequest::default(),
+    })
+    .unwrap();
+    assert_eq!(map.invalid_zeniths, s.invalid_zeniths.target);
+    // Swapped, the flags swap; `either` is their union.
+    let mut swapped = r.clone();
+    swapped.target = Some("glass".into());
+    swapped.background = Some("paint".into());
+    let w = contrast(&swapped).unwrap();
+    assert_eq!(w.invalid_zeniths.background, s.invalid_zeniths.target);
+    assert_eq!(w.invalid_zeniths.target, s.invalid_zeniths.background);
+    let mut union: Vec<f64> = paint
+        .iter()
+        .chain(&flagged_by_emissivity("glass"))
+        .copied()
+        .collect();
+    union.sort_by(f64::total_cmp);
+    union.dedup();
+    assert_eq!(deg(&s.invalid_zeniths.either()), union);
+}
+
+#[test]
+fn in_a_scene_the_flags_are_those_of_the_materials_at_the_scenes_nodes() {
+    // Paint's index does not depend on the wavelength: in a 10 µm scene its flags are its
+    // flags at any wavelength.
+    let dir = tempfile::tempdir().unwrap();
+    let scene = write(
+        dir.path(),
+        "s.toml",
+        "wavelength_um = 10\n[sky]\nmodel = \"thermal\"\ntemperature_k = 250\n[target]\n\
+         temperature_k = 305\n[background]\ntemperature_k = 300\n",
+    );
+    let s = contrast(&ContrastRequest {
+        target: Some("paint".into()),
+        background: Some(example("soil-lwir.toml").display().to_string()),
+        source: SourceRequest::Scene(scene),
+        grid_deg: (1.0, 90.0),
+        rank: RankRequest::default(),
+    })
+    .unwrap();
+    let deg: Vec<f64> = s
+        .invalid_zeniths
+        .target
+        .iter()
+        .map(|&t| hemisphere::deg(t))
+        .collect();
+    assert_eq!(deg, flagged_by_emissivity("paint"));
 }
