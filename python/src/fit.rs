@@ -299,6 +299,7 @@ fn geometries(
 #[pyfunction]
 #[pyo3(signature = (material, theta_i, phi_i, theta_r, phi_r, names, values, sigmas, free, degrees, starts, seed, wavelength_um=None))]
 #[allow(clippy::too_many_arguments)]
+// long function: the flat NumPy signature (13 arguments, one per line) takes 17 of its lines.
 pub(crate) fn fit_flat<'py>(
     py: Python<'py>,
     material: &PyMaterial,
