@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 /// the paths in order.
 ///
 /// # Errors
-/// [`Error::Write`] naming the directory or the file; then no file of the set was changed
+/// [`crate::Error::Write`] naming the directory or the file; then no file of the set was changed
 /// unless the error came while moving the staged files (the marker is then missing).
 pub fn write_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<Vec<PathBuf>> {
     let (parent, fresh) = stage_parent(dir)?;
@@ -37,7 +37,7 @@ pub fn write_files(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<Vec<PathBu
 /// `dir` (its parents created), inside an existing one (so that the renames stay within it).
 ///
 /// # Errors
-/// [`Error::Write`] naming `dir` when its parents cannot be created; [`Error::File`] when
+/// [`crate::Error::Write`] naming `dir` when its parents cannot be created; [`crate::Error::File`] when
 /// `dir` exists and is not a directory.
 fn stage_parent(dir: &Path) -> Result<(PathBuf, bool)> {
     if std::fs::symlink_metadata(dir).is_err() {
@@ -108,7 +108,7 @@ impl StagingDir {
     /// Stages a set for the directory `dest` (created with its parents if missing).
     ///
     /// # Errors
-    /// [`Error::Write`] naming `dest`; [`Error::File`] when `dest` exists and is not a
+    /// [`crate::Error::Write`] naming `dest`; [`crate::Error::File`] when `dest` exists and is not a
     /// directory.
     pub fn create(dest: &Path) -> Result<StagingDir> {
         let (parent, fresh) = stage_parent(dest)?;
@@ -134,7 +134,7 @@ impl StagingDir {
     /// Writes the marker (the staged files' names, sorted) and moves the set into place.
     ///
     /// # Errors
-    /// [`Error::Write`] naming the destination; the staged directory is then removed.
+    /// [`crate::Error::Write`] naming the destination; the staged directory is then removed.
     pub fn commit(mut self) -> Result<()> {
         let path = self.path.take().expect("committed once");
         let r = self.place(&path);

@@ -12,7 +12,7 @@ use crate::geometry::Unvalidated;
 
 impl Kernel<'_> {
     /// As [`Kernel::mueller_into`] of an [`Unvalidated`] batch, validating each block of
-    /// elements as the kernel reads it (the same test as [`GeometryBatch::new`]'s and
+    /// elements as the kernel reads it (the same test as [`crate::GeometryBatch::new`]'s and
     /// [`crate::DirectionBatch::new`]'s, in the pass that reads the input: no pass of its own
     /// over memory). The results of a valid batch are bit for bit those of
     /// [`Kernel::mueller_into`].
