@@ -58,11 +58,7 @@ pub fn write_all(dir: &Path, files: &[OutputFile]) -> Result<Vec<PathBuf>, CliEr
 
 /// A CSV document from a header and rows of numbers (shortest round-trip form).
 pub fn csv(header: &[&str], rows: impl Iterator<Item = Vec<f64>>) -> Vec<u8> {
-    let mut t = polbrdf_io::CsvTable::new(header);
-    for row in rows {
-        t.row(&row);
-    }
-    t.into_bytes()
+    polbrdf_io::CsvTable::document(header, rows)
 }
 
 /// What a path option of a command names.

@@ -1183,6 +1183,18 @@ impl CsvTable {
         t
     }
 
+    /// The document of a header and rows of numbers.
+    pub fn document<S: AsRef<str>, R: AsRef<[f64]>>(
+        header: impl IntoIterator<Item = S>,
+        rows: impl IntoIterator<Item = R>,
+    ) -> Vec<u8> {
+        let mut t = Self::new(header);
+        for row in rows {
+            t.row(row.as_ref());
+        }
+        t.into_bytes()
+    }
+
     /// Appends a row of numbers.
     pub fn row(&mut self, values: &[f64]) {
         self.fields(values.iter().map(|v| fmt_f64(*v)));

@@ -645,18 +645,7 @@ fn sun(doc: &TomlDoc<'_>) -> Result<Option<Sun>> {
     // Taken modulo 360° (exact in floating point: a file's 1e8 is the sun at 280°, bit for
     // bit); an azimuth within a turn is kept as written.
     let azimuth_deg = azimuth_deg % 360.0;
-    if !(irradiance.is_finite() && irradiance >= 0.0) {
-        return Err(invalid(
-            doc,
-            "sun.irradiance",
-            irradiance,
-            "must be finite and >= 0",
-        ));
-    }
-    let stokes = match doc.numbers("sun.stokes") {
-        None => Stokes::unpolarized(),
-        Some(s) => sun_stokes(doc, &s)?,
-    };
+    let stokes = sun_light(doc, irradiance)?;
     Ok(Some(Sun {
         zenith,
         azimuth: azimuth_deg.to_radians(),
@@ -761,6 +750,18 @@ fn sun_from_time(doc: &TomlDoc<'_>, time: &SunTime) -> Result<Sun> {
             ),
         ));
     };
+    let stokes = sun_light(doc, irradiance)?;
+    Ok(Sun {
+        zenith,
+        azimuth,
+        irradiance,
+        stokes,
+    })
+}
+
+/// The sun's light, whichever way it is placed: `sun.irradiance` (read by the caller, checked
+/// here: finite and ≥ 0) and its Stokes vector (`sun.stokes`, unpolarized when absent).
+fn sun_light(doc: &TomlDoc<'_>, irradiance: f64) -> Result<Stokes> {
     if !(irradiance.is_finite() && irradiance >= 0.0) {
         return Err(invalid(
             doc,
@@ -773,12 +774,7 @@ fn sun_from_time(doc: &TomlDoc<'_>, time: &SunTime) -> Result<Sun> {
         None => Stokes::unpolarized(),
         Some(s) => sun_stokes(doc, &s)?,
     };
-    Ok(Sun {
-        zenith,
-        azimuth,
-        irradiance,
-        stokes,
-    })
+    Ok(stokes)
 }
 
 /// `sun.stokes`: four finite numbers, `s0 > 0`, a degree of polarization at most 1 (to 1e-9,

@@ -54,11 +54,7 @@ impl ContrastView {
     }
     /// `contrast.csv` (the project's CSV writer).
     pub fn csv(&self) -> Vec<u8> {
-        let mut t = polbrdf_io::CsvTable::new(self.study.columns());
-        for r in self.study.rows() {
-            t.row(&r);
-        }
-        t.into_bytes()
+        polbrdf_io::CsvTable::document(self.study.columns(), self.study.rows())
     }
 }
 

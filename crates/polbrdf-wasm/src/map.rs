@@ -66,11 +66,7 @@ impl MapView {
     }
     /// The map as CSV (the project's CSV writer: shortest round-trip numbers).
     pub fn csv(&self) -> Vec<u8> {
-        let mut t = polbrdf_io::CsvTable::new(MuellerMap::columns());
-        for r in self.map.rows() {
-            t.row(&r);
-        }
-        t.into_bytes()
+        polbrdf_io::CsvTable::document(MuellerMap::columns(), self.map.rows())
     }
 }
 
