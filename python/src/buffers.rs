@@ -1,11 +1,11 @@
 //! Buffers: the flat NumPy arrays handed over by the Python layer as slices, new output
 //! arrays (or `MemoryError`), and where a pBRDF call writes (rows or planes).
 
-use crate::evaluation::CHUNK;
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
 use polbrdf::engine::batch::Split;
+use polbrdf::engine::batch::CHUNK;
 use polbrdf::engine::Kernel;
 use polbrdf::engine::Planes;
 use polbrdf::Engine;

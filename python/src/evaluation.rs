@@ -18,6 +18,7 @@ use crate::material::PyMaterial;
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
+use polbrdf::engine::batch::CHUNK;
 use polbrdf::engine::batch::{try_for_chunks, Split};
 use polbrdf::engine::Planes;
 use polbrdf::engine::Precision;
@@ -26,10 +27,6 @@ use polbrdf::{GeometryBatch, Unvalidated};
 use polbrdf::{Material, MaterialSpec};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-
-/// Most elements per parallel task: the core's driver (`try_for_chunks`) hands out at most
-/// this many.
-pub(crate) const CHUNK: usize = polbrdf::engine::batch::CHUNK;
 
 /// Runs `f` with the engine for elements `start .. start + len`: the material's own index, or
 /// with `wavelengths` (µm, one per element) the material's index at each (a spectral index;

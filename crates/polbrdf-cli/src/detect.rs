@@ -9,10 +9,10 @@ use crate::output::{write_all, OutputFile};
 use crate::values::{self, GridDeg, Pair, Range};
 use polbrdf::analysis::detection::Feature;
 use polbrdf_plot::{ColorScale, Colormap, PolarPanel};
+use polbrdf_tasks::detect::RangeUncertainty;
 use polbrdf_tasks::detect::{
     detect, DetectRequest, DetectStudy, FitSource, SceneSource, SensorSource, Views,
 };
-use polbrdf_tasks::detect_unc::RangeUncertainty;
 use std::path::PathBuf;
 
 /// Options of `polbrdf detect`.
@@ -240,7 +240,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
             k + 1,
             short(v.theta_r.to_degrees()),
             short(v.phi_r.to_degrees()),
-            match polbrdf_tasks::detect_out::max_range_text(v.max_range).as_str() {
+            match polbrdf_tasks::detect::out::max_range_text(v.max_range).as_str() {
                 "" => "not searched".to_string(),
                 t if t.parse::<f64>().is_ok() => format!("{} m", short(t.parse().unwrap_or(0.0))),
                 t => t.to_string(),

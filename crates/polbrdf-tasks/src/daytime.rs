@@ -9,8 +9,8 @@
 //! sets: such a row is reported with its sun position and no evaluation (NaN).
 
 use crate::contrast::{contrast, ContrastRequest, RankRequest, SourceRequest};
+use crate::detect::out::max_range_value;
 use crate::detect::{detect, DetectRequest, SceneSource, SensorSource, Views};
-use crate::detect_out::max_range_value;
 use crate::error::{TaskError, TaskResult};
 use crate::scene::Warning;
 use crate::sun::field_error;
@@ -327,7 +327,7 @@ fn evaluate(request: &DaytimeRequest, scene: &Scene) -> TaskResult<DaytimeValue>
                 })
             };
             let grid = run(Views::Grid(request.grid_deg))?;
-            warnings.extend(crate::detect_warnings::setup_warnings(&grid));
+            warnings.extend(crate::detect::warnings::setup_warnings(&grid));
             saturated_views = grid.saturated_views().len();
             let top = grid.ranked()[0];
             let at_fixed = run(Views::List(vec![request.fixed_view_deg]))?;

@@ -5,23 +5,27 @@
 //! photon-counting camera) at every view, then carried through the path, the analyzers and the
 //! noise to `d'`, `P_d` at each requested range and the detection range of each view.
 
+pub mod out;
+mod study;
+pub mod uncertainty;
+pub(crate) mod warnings;
+
+pub use study::{DetectStudy, RangeUncertainty, ViewResult};
+
 use crate::contrast::material_of;
-use crate::detect_unc::{Propagation, RangeUncertainty, DEFAULT_UNCERTAINTY_VIEWS};
 use crate::error::{TaskError, TaskResult};
 use crate::fit_covariance::FitCovariance;
 use crate::hemisphere::view_grid;
-use crate::scene::Warning;
 use crate::spectrum::NamedMaterial;
 use polbrdf::analysis::contrast::ViewGrid;
-use polbrdf::analysis::detection::{
-    Criteria, Detection, Detector, Feature, MaxRange, Path as AirPath,
-};
+use polbrdf::analysis::detection::{Criteria, Detector, Feature, MaxRange, Path as AirPath};
 use polbrdf::analysis::scene::{check_views, Observer};
 use polbrdf::analysis::sky::Quality;
 use polbrdf::analysis::Atmosphere;
 use polbrdf::{Spectrum, Stokes};
 use polbrdf_io::{Scene, SensorFile};
 use std::path::PathBuf;
+use uncertainty::{Propagation, DEFAULT_UNCERTAINTY_VIEWS};
 
 /// Where the scene comes from.
 #[derive(Debug, Clone, PartialEq)]
@@ -157,55 +161,6 @@ impl Default for DetectRequest {
             uncertainty_views: Some(DEFAULT_UNCERTAINTY_VIEWS),
         }
     }
-}
-
-/// One view's results.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ViewResult {
-    /// View zenith (rad).
-    pub theta_r: f64,
-    /// View azimuth (rad).
-    pub phi_r: f64,
-    /// The target's Stokes radiance leaving the surface, over the sensor's spectral weights.
-    pub target: Stokes,
-    /// The background's, likewise.
-    pub background: Stokes,
-    /// Detection at each of the request's ranges (without ranges: at the detection range, or
-    /// at the range limit when beyond it or not detectable).
-    pub at_ranges: Vec<Detection>,
-    /// The detection range (with `search`).
-    pub max_range: Option<MaxRange>,
-    /// Its uncertainty, with fits and for the views given one (docs/detection.md).
-    pub range_uncertainty: Option<RangeUncertainty>,
-}
-
-/// The result of [`detect`].
-#[derive(Debug, Clone)]
-pub struct DetectStudy {
-    /// The scene.
-    pub scene: Box<Scene>,
-    /// The sensor file.
-    pub sensor: Box<SensorFile>,
-    /// The target.
-    pub target: NamedMaterial,
-    /// The background.
-    pub background: NamedMaterial,
-    /// The detector (sensor, path in signal units, area, criteria).
-    pub detector: Detector,
-    /// The spectrum observed over (the sensor's).
-    pub spectrum: Spectrum,
-    /// The grid, for grid views.
-    pub grid: Option<ViewGrid>,
-    /// Per view, zenith-major for a grid.
-    pub views: Vec<ViewResult>,
-    /// The request's ranges (m).
-    pub ranges_m: Vec<f64>,
-    /// Setup warnings.
-    pub warnings: Vec<Warning>,
-    /// The target's and the background's fits, when given.
-    pub fits: [Option<FitCovariance>; 2],
-    /// With fits: the best-ranked views given an interval (`None`: every view).
-    pub uncertainty_views: Option<usize>,
 }
 
 /// The scene of the request, with the sun moved when asked.
@@ -455,7 +410,7 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
             scale,
             quality,
         };
-        let order = crate::detect_out::ranked_order(&views);
+        let order = out::ranked_order(&views);
         let n = request.uncertainty_views.unwrap_or(order.len());
         for &i in order.iter().take(n) {
             views[i].range_uncertainty = propagation.of_view(&views[i])?;
@@ -475,7 +430,7 @@ pub fn detect(request: &DetectRequest) -> TaskResult<DetectStudy> {
         fits,
         uncertainty_views: request.uncertainty_views,
     };
-    study.warnings = crate::detect_warnings::warnings(&study);
+    study.warnings = warnings::warnings(&study);
     Ok(study)
 }
 

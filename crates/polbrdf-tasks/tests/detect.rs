@@ -74,7 +74,7 @@ fn a_hazier_path_never_detects_farther() {
         );
         r.scene = SceneSource::File(p);
         let s = detect(&r).unwrap();
-        ranges.push(polbrdf_tasks::detect_out::max_range_value(
+        ranges.push(polbrdf_tasks::detect::out::max_range_value(
             s.views[0].max_range,
         ));
     }

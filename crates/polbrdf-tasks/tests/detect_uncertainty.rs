@@ -9,8 +9,8 @@ use polbrdf::analysis::detection::statistics::required_d_prime;
 use polbrdf::analysis::detection::{Feature, MaxRange};
 use polbrdf::sample::SplitMix64;
 use polbrdf_fit::Param;
+use polbrdf_tasks::detect::RangeUncertainty;
 use polbrdf_tasks::detect::{detect, DetectRequest, FitSource, SceneSource, SensorSource, Views};
-use polbrdf_tasks::detect_unc::RangeUncertainty;
 use polbrdf_tasks::fit_covariance::FitCovariance;
 use polbrdf_tasks::TaskError;
 

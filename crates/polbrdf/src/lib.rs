@@ -4,11 +4,13 @@
 //! exactly as pinned by the project's `docs/model.md`. Equation numbers in the documentation are
 //! the paper's. The library works in radians; files and the command line use degrees.
 //!
-//! The crate is layered; each layer imports only those above it in this list:
+//! The crate is layered; each layer imports only those above it in this list (the project's
+//! `scripts/check-layers` checks it):
 //!
 //! | layer | holds |
 //! |---|---|
 //! | [`error`] | the error type (a leaf) |
+//! | [`names`] | the closed sets of names: parsing and messages from each enum's `ALL` |
 //! | [`numeric`] | elementary-function backends, quadrature, linear algebra, the random generator |
 //! | [`optics`] | Stokes, Mueller, Jones, Fresnel — the psps basis and its conventions |
 //! | [`geometry`] | directions, a geometry, the angle variables in closed form, batches of geometries |

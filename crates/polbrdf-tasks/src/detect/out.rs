@@ -2,8 +2,7 @@
 //! per view and range), `best.json` (the views ranked by detection range) and the per-view
 //! arrays of the maps.
 
-use crate::detect::{DetectStudy, ViewResult};
-use crate::detect_unc::RangeUncertainty;
+use super::study::{DetectStudy, RangeUncertainty, ViewResult};
 use crate::fit_covariance::FitCovariance;
 use crate::hemisphere::deg;
 use polbrdf::analysis::detection::{estimate, Detection, MaxRange, NoiseModel, Path};
@@ -273,8 +272,8 @@ impl DetectStudy {
         json!({
             "method": "linear propagation, central differences (step σ/10), block-diagonal \
                        joint covariance of the two fits",
-            "confidence": num(crate::detect_unc::CONFIDENCE),
-            "z": num(crate::detect_unc::z()),
+            "confidence": num(super::uncertainty::CONFIDENCE),
+            "z": num(super::uncertainty::z()),
             "target_fit": fit(&self.fits[0]),
             "background_fit": fit(&self.fits[1]),
             "views": self.uncertainty_views.map_or(json!("all"), |n| json!(n)),

@@ -11,7 +11,7 @@
 //! observations (`n` the free parameters of both fits): only the best-ranked views get an
 //! interval by default ([`DEFAULT_UNCERTAINTY_VIEWS`]), every view on request.
 
-use crate::detect::ViewResult;
+use super::study::{RangeUncertainty, ViewResult};
 use crate::fit_covariance::FitCovariance;
 use crate::spectrum::NamedMaterial;
 use crate::TaskResult;
@@ -34,23 +34,6 @@ pub const CONFIDENCE: f64 = 0.95;
 /// the normal quantile — the interval is the linearization's, of a range taken as normal.
 pub fn z() -> f64 {
     phi_inv(0.5 + 0.5 * CONFIDENCE)
-}
-
-/// A view's detection range with its uncertainty.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum RangeUncertainty {
-    /// `σ_R` and the interval `R ± z·σ_R` (its lower end at least 0).
-    Interval {
-        /// `σ_R` (m).
-        sigma_m: f64,
-        /// `max(R − z·σ_R, 0)` (m).
-        lo_m: f64,
-        /// `R + z·σ_R` (m).
-        hi_m: f64,
-    },
-    /// No interval: a perturbed parameter set has no detection range (beyond the range limit
-    /// or not detectable) or leaves its parameter's domain (docs/detection.md).
-    Undefined,
 }
 
 /// The fits of a study and what their propagation needs of it.

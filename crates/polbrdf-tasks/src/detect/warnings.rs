@@ -3,7 +3,7 @@
 //! unit checks, a scene whose own wavelength or band lies outside the sensor's band, and
 //! views where the camera saturates (docs/detection.md, "Warnings").
 
-use crate::detect::{DetectStudy, ViewResult};
+use super::study::{DetectStudy, ViewResult};
 use crate::scene::{contrast_warnings_over, material_warnings, Warning};
 use polbrdf::analysis::detection::MaxRange;
 use polbrdf::Spectrum;
