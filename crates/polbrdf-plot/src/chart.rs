@@ -8,7 +8,8 @@ use crate::render::{draw_err, encode_png};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-type PlotResult = std::result::Result<(), Box<dyn std::error::Error + Send + Sync>>;
+/// The result of drawing (`T`: what a step reports besides success).
+type PlotResult<T = ()> = std::result::Result<T, Box<dyn std::error::Error + Send + Sync>>;
 
 /// Distinct colours (Matplotlib's "tab10").
 pub const PALETTE: [RGBColor; 10] = [
@@ -210,37 +211,63 @@ impl Ranged for LogAxis {
     }
 }
 
-/// Everything but the axes' construction: the same for a linear and a logarithmic x axis.
-fn draw_chart<'a, DB: DrawingBackend + 'a, X>(
-    mut chart: ChartContext<'a, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>,
-    p: &Panel,
-) -> PlotResult
+/// The chart type both axes' constructions give: any x axis over `f64`, a linear y axis.
+type Chart<'a, DB, X> =
+    ChartContext<'a, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>;
+
+/// Everything but the axes' construction: the same for a linear and a logarithmic x axis. The
+/// layers in drawing order: the mesh, the vertical reference lines, the lines, the markers and
+/// the legend (when any line or marker set has a label).
+fn draw_chart<'a, DB: DrawingBackend + 'a, X>(mut chart: Chart<'a, DB, X>, p: &Panel) -> PlotResult
 where
     DB::ErrorType: 'static,
     X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
 {
-    let y_fmt = |v: &f64| {
-        if p.log_y {
-            let k = v.round();
-            if (v - k).abs() < 1e-9 {
-                power_of_ten(k as i32)
-            } else {
-                String::new()
-            }
+    draw_mesh(&mut chart, p)?;
+    draw_vlines(&mut chart, p)?;
+    let lines_labelled = draw_lines(&mut chart, p)?;
+    let markers_labelled = draw_markers(&mut chart, p)?;
+    if lines_labelled || markers_labelled {
+        draw_legend(&mut chart, p.legend)?;
+    }
+    Ok(())
+}
+
+/// The y tick label of `v`: a power of ten at the integers of a log axis (none between them),
+/// else the value with at most three decimals and no trailing zeros (never "-0").
+fn y_tick_label(v: f64, log_y: bool) -> String {
+    if log_y {
+        let k = v.round();
+        if (v - k).abs() < 1e-9 {
+            power_of_ten(k as i32)
         } else {
-            let s = format!("{v:.3}");
-            let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
-            if s == "-0" {
-                "0".into()
-            } else {
-                s
-            }
+            String::new()
         }
-    };
-    let x_fmt = |v: &f64| {
-        let s = format!("{v:.2}");
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    };
+    } else {
+        let s = format!("{v:.3}");
+        let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
+        if s == "-0" {
+            "0".into()
+        } else {
+            s
+        }
+    }
+}
+
+/// The x tick label of `v`: at most two decimals, no trailing zeros.
+fn x_tick_label(v: f64) -> String {
+    let s = format!("{v:.2}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// The axes, their descriptions and tick labels, and the light and bold grid lines.
+fn draw_mesh<'a, DB: DrawingBackend + 'a, X>(chart: &mut Chart<'a, DB, X>, p: &Panel) -> PlotResult
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
+    let y_fmt = |v: &f64| y_tick_label(*v, p.log_y);
+    let x_fmt = |v: &f64| x_tick_label(*v);
     chart
         .configure_mesh()
         .x_desc(&p.x_desc)
@@ -254,7 +281,19 @@ where
         .light_line_style(RGBColor(235, 235, 235))
         .bold_line_style(RGBColor(200, 200, 200))
         .draw()?;
+    Ok(())
+}
 
+/// The vertical reference lines (dashed, over the whole y range), each with its label near the
+/// top.
+fn draw_vlines<'a, DB: DrawingBackend + 'a, X>(
+    chart: &mut Chart<'a, DB, X>,
+    p: &Panel,
+) -> PlotResult
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
     for (x, label) in &p.vlines {
         let (y0, y1) = p.y_range;
         chart.draw_series(DashedLineSeries::new(
@@ -269,7 +308,19 @@ where
             (FAMILY, 18).into_font().color(&BLACK.mix(0.8)),
         )))?;
     }
+    Ok(())
+}
 
+/// The lines (decimated to [`MAX_LINE_POINTS`]), solid or dashed, with a legend sample for each
+/// labelled one; whether any line has a label.
+fn draw_lines<'a, DB: DrawingBackend + 'a, X>(
+    chart: &mut Chart<'a, DB, X>,
+    p: &Panel,
+) -> PlotResult<bool>
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
     let mut any_label = false;
     for l in &p.lines {
         let style = ShapeStyle::from(&l.color).stroke_width(l.width);
@@ -296,7 +347,20 @@ where
             });
         }
     }
+    Ok(any_label)
+}
 
+/// The marker sets (discs or open squares, one colour per point), with a legend sample for
+/// each labelled set; whether any set has a label.
+fn draw_markers<'a, DB: DrawingBackend + 'a, X>(
+    chart: &mut Chart<'a, DB, X>,
+    p: &Panel,
+) -> PlotResult<bool>
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
+    let mut any_label = false;
     for m in &p.markers {
         let shape = m.marker;
         let pts = m.points.iter().zip(&m.colors);
@@ -331,24 +395,33 @@ where
             }
         }
     }
+    Ok(any_label)
+}
 
-    if any_label {
-        let pos = match p.legend {
-            LegendAt::UpperLeft => SeriesLabelPosition::UpperLeft,
-            LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
-            LegendAt::LowerLeft => SeriesLabelPosition::LowerLeft,
-            LegendAt::MiddleRight => SeriesLabelPosition::MiddleRight,
-        };
-        chart
-            .configure_series_labels()
-            .position(pos)
-            .margin(12)
-            .legend_area_size(34)
-            .label_font((FAMILY, 18))
-            .background_style(WHITE.mix(0.88))
-            .border_style(RGBColor(120, 120, 120))
-            .draw()?;
-    }
+/// The legend of the labelled lines and marker sets, on a light box at `at`.
+fn draw_legend<'a, DB: DrawingBackend + 'a, X>(
+    chart: &mut Chart<'a, DB, X>,
+    at: LegendAt,
+) -> PlotResult
+where
+    DB::ErrorType: 'static,
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
+    let pos = match at {
+        LegendAt::UpperLeft => SeriesLabelPosition::UpperLeft,
+        LegendAt::UpperRight => SeriesLabelPosition::UpperRight,
+        LegendAt::LowerLeft => SeriesLabelPosition::LowerLeft,
+        LegendAt::MiddleRight => SeriesLabelPosition::MiddleRight,
+    };
+    chart
+        .configure_series_labels()
+        .position(pos)
+        .margin(12)
+        .legend_area_size(34)
+        .label_font((FAMILY, 18))
+        .background_style(WHITE.mix(0.88))
+        .border_style(RGBColor(120, 120, 120))
+        .draw()?;
     Ok(())
 }
 

@@ -286,22 +286,56 @@ pub fn crossings(f: &Fig2) -> Vec<(f64, f64, f64)> {
     out
 }
 
-/// Runs every computation; `tick` is called after each of `STEPS` steps.
+/// Runs every computation; `tick` is called after each of `STEPS` steps: Fig. 2 (claims 1–3′),
+/// Fig. 3 (claim 4), the fits of Table 1's row 0 (claim 7, Fig. 5(b)) and each roughness
+/// interpretation (claims 5 and 6, Fig. 4, Table 1, Fig. 5(a)).
 pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
     let (fig2, spreads, fig2_decreasing, fig2_ordered) = fig2_part()?;
     let crossings = crossings(&fig2);
     tick("Fig. 2 computed");
 
     let fig3 = compute::fig3()?;
-    let fig3_peak =
-        fig3.iter().copied().fold(
-            (f64::NAN, f64::NEG_INFINITY),
-            |a, b| if b.1 > a.1 { b } else { a },
-        );
+    let fig3_peak = fig3_peak(&fig3);
     let dolp_angles = compute::dolp_angles_deg();
     tick("Fig. 3 computed");
 
-    // Row-0 hypotheses.
+    let row0 = row0_fits();
+    let emission_n = fitted_n(&row0, Smooth::Emission, 1);
+    let hypothesis_curves = hypothesis_curves(&row0, &dolp_angles);
+    tick("Table 1 row 0 fitted");
+
+    let r = roughness_part(emission_n, &dolp_angles, tick)?;
+    Ok(Analysis {
+        fig2,
+        crossings,
+        emission_notes: r.emission_notes,
+        spreads,
+        fig2_decreasing,
+        fig2_ordered,
+        fig3,
+        fig3_peak,
+        dolp_angles,
+        fig4: r.fig4,
+        interps: r.interps,
+        no_volume_max_change: r.no_volume_max_change,
+        row0,
+        emission_n,
+        hypothesis_curves,
+    })
+}
+
+/// Where the Fig. 3 curve peaks, `(θ°, DoLP)` (claim 4: at Brewster's angle, DoLP 1).
+fn fig3_peak(fig3: &[(f64, f64)]) -> (f64, f64) {
+    fig3.iter().copied().fold(
+        (f64::NAN, f64::NEG_INFINITY),
+        |a, b| if b.1 > a.1 { b } else { a },
+    )
+}
+
+/// Table 1's row 0 (σ → 0) fitted by each smooth-surface hypothesis (reflection, emission)
+/// against each column (the paper's model, Lawrence/Wolff): the RMS at the paper's n and the
+/// best real and complex indices (claim 7: is the row the Fresnel DoLP of n = 1.65?).
+fn row0_fits() -> Vec<Row0Fit> {
     let columns = [&TABLE_PAPER_MODEL[0], &TABLE_PAPER_LAWRENCE[0]];
     let mut row0 = Vec::new();
     for hyp in [Smooth::Reflection, Smooth::Emission] {
@@ -315,12 +349,20 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
             });
         }
     }
-    let fit = |hyp: Smooth, column: usize| {
-        row0.iter()
-            .find(|f| f.hyp == hyp && f.column == column)
-            .map_or(f64::NAN, |f| f.real.n)
-    };
-    let emission_n = fit(Smooth::Emission, 1);
+    row0
+}
+
+/// The best real index of the row-0 fit of `hyp` against `column` (NaN if it was not fitted).
+fn fitted_n(row0: &[Row0Fit], hyp: Smooth, column: usize) -> f64 {
+    row0.iter()
+        .find(|f| f.hyp == hyp && f.column == column)
+        .map_or(f64::NAN, |f| f.real.n)
+}
+
+/// Fig. 5(b)'s smooth-surface curves at `dolp_angles`: reflection and emission, each at the
+/// paper's n and at the n that best fits the paper's model column of row 0.
+fn hypothesis_curves(row0: &[Row0Fit], dolp_angles: &[f64]) -> Vec<(String, Vec<f64>)> {
+    let fit = |hyp: Smooth, column: usize| fitted_n(row0, hyp, column);
     let mut hypothesis_curves = Vec::new();
     for (label, hyp, n) in [
         (format!("reflection, n = {N}"), Smooth::Reflection, N),
@@ -345,12 +387,13 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
             .collect();
         hypothesis_curves.push((label, y));
     }
-    tick("Table 1 row 0 fitted");
+    hypothesis_curves
+}
 
-    // Roughness interpretations.
-    let table_model = TABLE_PAPER_MODEL;
-    let table_lawrence = TABLE_PAPER_LAWRENCE;
-    let kinds: [(String, Roughness); 5] = [
+/// The roughness interpretations tried against Table 1, in the report's order; the first is
+/// the primary one. (c) uses `emission_n`, the best emission fit of row 0.
+fn interpretations(emission_n: f64) -> [(String, Roughness); 5] {
+    [
         (
             "(a) σ in rad + volume term, eq. 6 form [primary]".into(),
             Roughness::SigmaWithVolume(Form::Paper),
@@ -371,27 +414,47 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
             format!("(c) thermal emission (Kirchhoff), σ in rad, n = {emission_n:.1}"),
             Roughness::Emission(emission_n, true),
         ),
-    ];
+    ]
+}
+
+/// What the roughness interpretations give.
+struct RoughnessPart {
+    /// Each interpretation at Table 1's cells, with its RMS against both columns.
+    interps: Vec<InterpResult>,
+    /// Fig. 4: the primary interpretation's DoLP curves.
+    fig4: Vec<Vec<f64>>,
+    /// See [`Analysis::no_volume_max_change`].
+    no_volume_max_change: f64,
+    /// The diagnostics of interpretation (c).
+    emission_notes: EmissionNotes,
+}
+
+/// Evaluates every interpretation at Table 1's cells (claim 6: agreement with Lawrence/Wolff;
+/// claim 5: does roughness lower the DoLP?), the primary one's curves at `dolp_angles` (Fig. 4,
+/// Fig. 5(a)), the largest DoLP change without a volume term (claim 5) and the diagnostics of
+/// (c); `tick` after each interpretation.
+fn roughness_part(
+    emission_n: f64,
+    dolp_angles: &[f64],
+    tick: &mut dyn FnMut(&str),
+) -> Result<RoughnessPart, polbrdf::Error> {
+    let table_model = TABLE_PAPER_MODEL;
+    let table_lawrence = TABLE_PAPER_LAWRENCE;
     let mut interps = Vec::new();
     let mut fig4 = Vec::new();
     let mut no_volume_max_change = 0.0;
     let mut emission_notes = None;
-    for (label, how) in kinds {
+    for (label, how) in interpretations(emission_n) {
         let it = Interpretation::new(how)?;
         let cells = compute::table_cells(&it);
         if let Roughness::Emission(n, true) = how {
             emission_notes = Some(self::emission_notes(n, &it)?);
         }
         if interps.is_empty() {
-            fig4 = compute::dolp_curves(&it, &dolp_angles);
+            fig4 = compute::dolp_curves(&it, dolp_angles);
         }
         if how == Roughness::SigmaNoVolume {
-            let curves = compute::dolp_curves(&it, &dolp_angles);
-            for c in &curves[1..] {
-                for (a, b) in c.iter().zip(&curves[0]) {
-                    no_volume_max_change = f64::max(no_volume_max_change, (a - b).abs());
-                }
-            }
+            no_volume_max_change = max_change_from_smooth(&it, dolp_angles);
         }
         interps.push(InterpResult {
             label,
@@ -404,28 +467,28 @@ pub fn analyze(tick: &mut dyn FnMut(&str)) -> Result<Analysis, polbrdf::Error> {
         });
         tick("roughness interpretation evaluated");
     }
-
     let emission_notes = emission_notes.ok_or_else(|| {
         polbrdf::Error::InconsistentParameters("interpretation (c) not evaluated".into())
     })?;
-
-    Ok(Analysis {
-        fig2,
-        crossings,
-        emission_notes,
-        spreads,
-        fig2_decreasing,
-        fig2_ordered,
-        fig3,
-        fig3_peak,
-        dolp_angles,
-        fig4,
+    Ok(RoughnessPart {
         interps,
+        fig4,
         no_volume_max_change,
-        row0,
-        emission_n,
-        hypothesis_curves,
+        emission_notes,
     })
+}
+
+/// `max |DoLP(σ) − DoLP(σ → 0)|` of interpretation `it` over its roughness rows and
+/// `dolp_angles` (claim 5: without a volume term roughness leaves the specular DoLP unchanged).
+fn max_change_from_smooth(it: &Interpretation, dolp_angles: &[f64]) -> f64 {
+    let curves = compute::dolp_curves(it, dolp_angles);
+    let mut max_change = 0.0;
+    for c in &curves[1..] {
+        for (a, b) in c.iter().zip(&curves[0]) {
+            max_change = f64::max(max_change, (a - b).abs());
+        }
+    }
+    max_change
 }
 
 /// Number of `tick` calls made by [`analyze`].

@@ -242,6 +242,15 @@ pub fn fig4(a: &Analysis) -> Figure {
 
 /// Fig. 5: our curves over Table 1's points, and the smooth-row hypotheses.
 pub fn fig5(a: &Analysis) -> Figure {
+    Figure {
+        size: (1800, 780),
+        panels: vec![fig5_ours_vs_table(a), fig5_smooth_row(a)],
+    }
+}
+
+/// Fig. 5(a): the primary interpretation's DoLP curves (%) for every roughness, over Table 1's
+/// cells of both columns as markers coloured by roughness.
+fn fig5_ours_vs_table(a: &Analysis) -> Panel {
     let lines_a: Vec<Line> = ROUGHNESS
         .iter()
         .zip(&a.fig4)
@@ -259,6 +268,26 @@ pub fn fig5(a: &Analysis) -> Figure {
             width: 2,
         })
         .collect();
+    Panel {
+        title: "(a) ours (lines) vs Table 1 (markers, same colour = same roughness)".into(),
+        x_desc: "incidence angle θi = θr (deg)".into(),
+        y_desc: "DoLP (%)".into(),
+        x_range: (0.0, 90.0),
+        y_range: (0.0, 108.0),
+        log_y: false,
+        log_x: false,
+        x_ticks: 10,
+        y_ticks: 12,
+        lines: lines_a,
+        markers: table1_markers(),
+        vlines: vec![],
+        legend: LegendAt::UpperLeft,
+    }
+}
+
+/// Table 1's cells (DoLP, %) as two marker sets, the paper's model column left of each angle
+/// and the Lawrence/Wolff column right of it, coloured by roughness row.
+fn table1_markers() -> Vec<Markers> {
     let table_points = |t: &[[f64; 5]; 6]| -> (Vec<(f64, f64)>, Vec<RGBColor>) {
         let mut pts = Vec::new();
         let mut cols = Vec::new();
@@ -274,7 +303,7 @@ pub fn fig5(a: &Analysis) -> Figure {
     let (pm, cm) = table_points(&TABLE_PAPER_MODEL);
     let (pl, cl) = table_points(&TABLE_PAPER_LAWRENCE);
     let shift = |v: Vec<(f64, f64)>, dx: f64| v.into_iter().map(|(x, y)| (x + dx, y)).collect();
-    let markers_a = vec![
+    vec![
         Markers {
             label: "paper's model (Table 1)".into(),
             points: shift(pm, -1.3),
@@ -289,7 +318,12 @@ pub fn fig5(a: &Analysis) -> Figure {
             legend_color: BLACK,
             marker: Marker::Square,
         },
-    ];
+    ]
+}
+
+/// Fig. 5(b): Table 1's roughness-0 row (both columns, %) against the smooth-surface
+/// hypotheses' curves (reflection and emission, each at the paper's n and at the best fit).
+fn fig5_smooth_row(a: &Analysis) -> Panel {
     let hyp_colors = [PALETTE[0], PALETTE[0], PALETTE[1], PALETTE[1]];
     let lines_b = a
         .hypothesis_curves
@@ -311,55 +345,35 @@ pub fn fig5(a: &Analysis) -> Figure {
     let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
         TABLE_ANGLES_DEG.iter().copied().zip(t[0]).collect()
     };
-    Figure {
-        size: (1800, 780),
-        panels: vec![
-            Panel {
-                title: "(a) ours (lines) vs Table 1 (markers, same colour = same roughness)".into(),
-                x_desc: "incidence angle θi = θr (deg)".into(),
-                y_desc: "DoLP (%)".into(),
-                x_range: (0.0, 90.0),
-                y_range: (0.0, 108.0),
-                log_y: false,
-                log_x: false,
-                x_ticks: 10,
-                y_ticks: 12,
-                lines: lines_a,
-                markers: markers_a,
-                vlines: vec![],
-                legend: LegendAt::UpperLeft,
+    Panel {
+        title: "(b) Table 1 roughness-0 row vs smooth-surface hypotheses".into(),
+        x_desc: "incidence (reflection) or emission angle θ (deg)".into(),
+        y_desc: "DoLP (%)".into(),
+        x_range: (0.0, 90.0),
+        y_range: (0.0, 108.0),
+        log_y: false,
+        log_x: false,
+        x_ticks: 10,
+        y_ticks: 12,
+        lines: lines_b,
+        markers: vec![
+            Markers {
+                label: "Table 1 row 0, paper's model".into(),
+                points: row0(&TABLE_PAPER_MODEL),
+                colors: vec![PALETTE[3]; 5],
+                legend_color: PALETTE[3],
+                marker: Marker::Disc,
             },
-            Panel {
-                title: "(b) Table 1 roughness-0 row vs smooth-surface hypotheses".into(),
-                x_desc: "incidence (reflection) or emission angle θ (deg)".into(),
-                y_desc: "DoLP (%)".into(),
-                x_range: (0.0, 90.0),
-                y_range: (0.0, 108.0),
-                log_y: false,
-                log_x: false,
-                x_ticks: 10,
-                y_ticks: 12,
-                lines: lines_b,
-                markers: vec![
-                    Markers {
-                        label: "Table 1 row 0, paper's model".into(),
-                        points: row0(&TABLE_PAPER_MODEL),
-                        colors: vec![PALETTE[3]; 5],
-                        legend_color: PALETTE[3],
-                        marker: Marker::Disc,
-                    },
-                    Markers {
-                        label: "Table 1 row 0, Lawrence/Wolff".into(),
-                        points: row0(&TABLE_PAPER_LAWRENCE),
-                        colors: vec![GREY; 5],
-                        legend_color: GREY,
-                        marker: Marker::Square,
-                    },
-                ],
-                vlines: vec![],
-                legend: LegendAt::UpperLeft,
+            Markers {
+                label: "Table 1 row 0, Lawrence/Wolff".into(),
+                points: row0(&TABLE_PAPER_LAWRENCE),
+                colors: vec![GREY; 5],
+                legend_color: GREY,
+                marker: Marker::Square,
             },
         ],
+        vlines: vec![],
+        legend: LegendAt::UpperLeft,
     }
 }
 
