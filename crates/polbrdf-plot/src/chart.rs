@@ -2,9 +2,9 @@
 //! drawn once into a PNG (bitmap backend, text rendered with the embedded DejaVu Sans through
 //! `ab_glyph`) and once into an SVG.
 
+use crate::encode::{draw_err, encode_png};
 use crate::error::Result;
 use crate::font::FAMILY;
-use crate::render::{draw_err, encode_png};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

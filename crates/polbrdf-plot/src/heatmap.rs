@@ -4,9 +4,9 @@
 //! an optional outline (e.g. where the target is). PNG output draws the raster into the bitmap;
 //! SVG output embeds the same raster as a PNG `<image>` under the vector text.
 
+use crate::encode::{layered_png, layered_svg, DrawResult, Layered, Raster};
 use crate::error::{Error, Result};
-use crate::polar::{centered, draw_color_bar, pt, ColorScale, DrawResult};
-use crate::render::{layered_png, layered_svg, Layered, Raster};
+use crate::polar::{centered, draw_color_bar, pt, ColorScale};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -218,14 +218,5 @@ impl Layered for HeatmapFigure {
             )?;
         }
         Ok(())
-    }
-}
-
-impl crate::render::Render for HeatmapFigure {
-    fn png(&self) -> Result<Vec<u8>> {
-        HeatmapFigure::png(self)
-    }
-    fn svg(&self) -> Result<String> {
-        HeatmapFigure::svg(self)
     }
 }

@@ -39,6 +39,8 @@
 #[cfg(feature = "render")]
 pub mod chart;
 pub mod colormap;
+#[cfg(feature = "render")]
+mod encode;
 pub mod error;
 #[cfg(feature = "render")]
 pub mod font;
@@ -52,6 +54,8 @@ mod render;
 #[cfg(feature = "render")]
 pub use chart::{power_of_ten, Figure, LegendAt, Line, Marker, Markers, Panel, PALETTE};
 pub use colormap::Colormap;
+#[cfg(feature = "render")]
+pub use encode::encode_png;
 pub use error::{Error, Result};
 #[cfg(feature = "render")]
 pub use heatmap::{HeatmapFigure, HeatmapPanel};
@@ -61,4 +65,4 @@ pub use polar::{
     nice_ceil, ColorScale, Disk, MarkShape, PolarFigure, PolarGrid, PolarMark, PolarPanel,
 };
 #[cfg(feature = "render")]
-pub use render::{encode_png, render_files, Files, Render};
+pub use render::{render_files, Files, Render};

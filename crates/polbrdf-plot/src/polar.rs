@@ -15,14 +15,16 @@ mod figure;
 mod grid;
 mod marks;
 mod overlay;
+mod panel;
 mod scale;
 mod text;
 
 pub use disk::Disk;
-pub use figure::{panel_disk, PolarFigure, PolarPanel};
+pub use figure::PolarFigure;
 pub use grid::PolarGrid;
 pub use marks::{MarkShape, PolarMark};
+pub use panel::{panel_disk, PolarPanel};
 pub use scale::{nice_ceil, ColorScale};
 
 pub(crate) use color_bar::draw_color_bar;
-pub(crate) use text::{centered, pt, DrawResult};
+pub(crate) use text::{centered, pt};

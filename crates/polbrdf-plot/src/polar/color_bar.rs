@@ -2,7 +2,8 @@
 //! (shared by the polar maps and the images).
 
 use super::scale::ColorScale;
-use super::text::{font, pt, DrawResult};
+use super::text::{font, pt};
+use crate::encode::DrawResult;
 use crate::font::FAMILY;
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -1,8 +1,5 @@
 //! The projection of the viewing hemisphere onto a disk (radius ∝ θ, φ counterclockwise from
-//! the right) and the map's raster drawn through it.
-
-use super::PolarPanel;
-use crate::render::Raster;
+//! the right).
 
 /// Where a map's disk lies in the figure, in pixels (y downward).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,39 +33,5 @@ impl Disk {
             90.0 * rho / self.r,
             dy.atan2(dx).to_degrees().rem_euclid(360.0),
         ))
-    }
-}
-
-/// The map's pixels: the disk's bounding square (`None` outside the disk).
-pub(super) fn raster(p: &PolarPanel, disk: &Disk) -> Raster {
-    let x0 = (disk.cx - disk.r).floor() as i64 - 1;
-    let y0 = (disk.cy - disk.r).floor() as i64 - 1;
-    let side = (2.0 * disk.r).ceil() as u32 + 3;
-    let values: Vec<f64> = p
-        .grid
-        .values()
-        .iter()
-        .map(|&v| p.scale.forward(v))
-        .collect();
-    let mut out = Vec::with_capacity((side * side) as usize);
-    for row in 0..side {
-        for col in 0..side {
-            let (x, y) = (
-                (x0 + col as i64) as f64 + 0.5,
-                (y0 + row as i64) as f64 + 0.5,
-            );
-            out.push(disk.direction(x, y).map(|(theta, phi)| {
-                let v = p.grid.interpolate(&values, theta, phi, p.scale.period);
-                let c = p.scale.colormap.rgb(p.scale.position(v));
-                [c.0, c.1, c.2]
-            }));
-        }
-    }
-    Raster {
-        x0,
-        y0,
-        w: side,
-        h: side,
-        pixels: out,
     }
 }

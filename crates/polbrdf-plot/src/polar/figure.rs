@@ -1,38 +1,15 @@
-//! The panel layout: polar maps on a grid of equally sized panels, where each panel's title,
-//! disk, colour bar and legend go, and the figure's layered rendering (raster under overlay).
+//! The figure: polar maps on a grid of equally sized panels (row by row), each panel's place
+//! and disk in it, and its layered rendering (the maps' rasters under the overlays).
 
-use super::disk::{raster, Disk};
+use super::disk::Disk;
 use super::overlay::draw_panel_overlay;
-use super::text::DrawResult;
-use super::{ColorScale, PolarGrid, PolarMark};
+use super::panel::{panel_disk, raster, PolarPanel};
+use crate::encode::{layered_png, layered_svg, DrawResult, Layered, Raster};
 #[cfg(doc)]
 use crate::error::Error;
 use crate::error::Result;
-use crate::render::{layered_png, layered_svg, Layered, Raster};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-
-/// Height of the title strip at the top of each panel, pixels.
-pub(super) const TITLE_H: f64 = 46.0;
-/// Height of the legend strip at the bottom of each panel, pixels.
-pub(super) const LEGEND_H: f64 = 38.0;
-/// Width of the colour bar area at the right of each panel, pixels.
-pub(super) const BAR_AREA_W: f64 = 128.0;
-/// Room between the rim and the panel edge for the azimuth labels, pixels.
-const LABEL_MARGIN: f64 = 38.0;
-
-/// One polar map.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PolarPanel {
-    /// Title above the map.
-    pub title: String,
-    /// The data.
-    pub grid: PolarGrid,
-    /// Colours and colour bar.
-    pub scale: ColorScale,
-    /// Marks drawn over the map.
-    pub marks: Vec<PolarMark>,
-}
 
 /// Polar maps on a grid of equally sized panels (row by row).
 #[derive(Debug, Clone, PartialEq)]
@@ -114,17 +91,5 @@ impl Layered for PolarFigure {
             draw_panel_overlay(root, p, (ox, oy), self.panel_size, &self.disk(k))?;
         }
         Ok(())
-    }
-}
-
-/// The disk of a panel of the given size, relative to the panel's top-left corner.
-pub fn panel_disk((w, h): (u32, u32)) -> Disk {
-    let bw = f64::from(w) - BAR_AREA_W;
-    let bh = f64::from(h) - TITLE_H - LEGEND_H;
-    let r = (bw.min(bh) / 2.0 - LABEL_MARGIN).max(10.0).floor();
-    Disk {
-        cx: (bw / 2.0).round(),
-        cy: (TITLE_H + bh / 2.0).round(),
-        r,
     }
 }

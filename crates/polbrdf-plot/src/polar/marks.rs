@@ -1,7 +1,8 @@
 //! The marks drawn on a map (sun, specular direction, best directions, locus points): their
 //! shapes and how each is drawn.
 
-use super::text::{pt, DrawResult};
+use super::text::pt;
+use crate::encode::DrawResult;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -2,10 +2,11 @@
 //! drawn over the map's raster.
 
 use super::color_bar::draw_color_bar;
-use super::figure::{BAR_AREA_W, LEGEND_H, TITLE_H};
 use super::marks::draw_mark;
-use super::text::{boxed_text, centered, font, pt, DrawResult};
-use super::{Disk, PolarMark, PolarPanel};
+use super::panel::{PolarPanel, BAR_AREA_W, LEGEND_H, TITLE_H};
+use super::text::{boxed_text, centered, font, pt};
+use super::{Disk, PolarMark};
+use crate::encode::DrawResult;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};

@@ -1,13 +1,11 @@
 //! Text and pixel helpers shared by the figures' overlays: the fonts, pixel rounding and text
 //! on a white box.
 
+use crate::encode::DrawResult;
 use crate::font::FAMILY;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-
-/// The result of drawing onto a plotters backend.
-pub(crate) type DrawResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
 /// Black DejaVu Sans of `size` pixels.
 pub(crate) fn font(size: f64) -> TextStyle<'static> {
