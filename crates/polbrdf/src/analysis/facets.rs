@@ -152,7 +152,9 @@ impl FacetRule {
         e
     }
 
-    /// The nodes for a fixed direction at zenith `theta` (rad, `0 ≤ θ < π/2`; none otherwise).
+    /// The nodes for a fixed direction at zenith `theta` (rad, `0 ≤ θ < π/2`; none otherwise):
+    /// the rings of the θN panels, on each ring its visible arc split at its φN edges, and the
+    /// nodes of each piece of arc (module documentation).
     pub fn nodes(&self, theta: f64) -> Vec<FacetNode> {
         let mut out = Vec::new();
         if !(0.0..FRAC_PI_2).contains(&theta) {
@@ -161,106 +163,144 @@ impl FacetRule {
         let panels = self.refine.max(1);
         let (st, ct) = theta.sin_cos();
         let w = [st, 0.0, ct];
-        // The cone point's facet normal (θN, |φN|).
-        let cone = self.cone.and_then(|c| {
-            let h = [w[0] + c[0], w[1] + c[1], w[2] + c[2]];
-            let n = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
-            (n > 1e-12).then(|| ((h[2] / n).clamp(-1.0, 1.0).acos(), h[1].atan2(h[0]).abs()))
-        });
+        let cone = self.cone_normal(&w);
         let edges = self.theta_edges(theta, cone);
-        // φmax on the ring at θN: w'·z = 2cosβ·cosθN − cosθ > 0 with
-        // cosβ = sinθ·sinθN·cosφN + cosθ·cosθN.
-        let phi_max = |sn: f64, cn: f64| -> f64 {
-            let denom = 2.0 * st * sn * cn;
-            if denom > 0.0 {
-                (ct * (1.0 - 2.0 * cn * cn) / denom).clamp(-1.0, 1.0).acos()
-            } else if 2.0 * cn * cn > 1.0 {
-                PI // θ = 0 or θN = 0: the whole ring, if any, is visible
-            } else {
-                0.0
-            }
-        };
         let mut arc = Vec::with_capacity(3);
         for seg in edges.windows(2) {
             for (theta_n, w_n) in smoothstep_n(seg[0], seg[1], 2 * panels, self.theta_points) {
                 let (sn, cn) = theta_n.sin_cos();
-                let pm = phi_max(sn, cn);
+                let pm = phi_max(st, ct, sn, cn);
                 if pm <= 0.0 {
                     continue;
                 }
-                arc.clear();
-                arc.push(0.0);
-                if let Some(bc) = self.critical_beta {
-                    // cosβ = cosβc on the ring.
-                    let d = st * sn;
-                    if d > 0.0 {
-                        let c = (bc.cos() - ct * cn) / d;
-                        if c.abs() < 1.0 {
-                            let p = c.acos();
-                            if p > 1e-12 && p < pm - 1e-12 {
-                                arc.push(p);
-                            }
-                        }
-                    }
-                }
-                if self.azimuth_kink {
-                    let view = (2.0 * theta_n).tan() / theta.tan();
-                    for p in [FRAC_PI_2, if view.abs() < 1.0 { view.acos() } else { 0.0 }] {
-                        if p > 1e-12 && p < pm - 1e-12 {
-                            arc.push(p);
-                        }
-                    }
-                }
-                if let Some((_, p)) = cone {
-                    if p > 1e-12 && p < pm - 1e-12 {
-                        arc.push(p);
-                    }
-                }
-                arc.push(pm);
-                arc.sort_by(f64::total_cmp);
+                self.arc_edges(&mut arc, (theta, st, ct), (theta_n, sn, cn), pm, cone);
                 // The half ring twice (or both halves), times sinθN of dω_h.
                 let ring = if self.full_ring {
                     w_n * sn
                 } else {
                     2.0 * w_n * sn
                 };
-                for piece in 0..arc.len() - 1 {
-                    for (phi_n, w_p) in
-                        smoothstep_n(arc[piece], arc[piece + 1], panels, self.phi_points)
-                    {
-                        let (sp, cp) = phi_n.sin_cos();
-                        let h = [sn * cp, sn * sp, cn];
-                        let cos_beta = w[0] * h[0] + w[2] * h[2];
-                        if cos_beta <= 0.0 {
-                            continue; // the facet faces away from w
-                        }
-                        let wp = [
-                            2.0 * cos_beta * h[0] - w[0],
-                            2.0 * cos_beta * h[1],
-                            2.0 * cos_beta * h[2] - w[2],
-                        ];
-                        if wp[2] <= 0.0 {
-                            continue;
-                        }
-                        let node = FacetNode {
-                            theta: wp[0].hypot(wp[1]).atan2(wp[2]),
-                            phi: wp[1].atan2(wp[0]),
-                            // g cosθ' dω' = g · w'·z · 4 cosβ dω_h
-                            weight: ring * w_p * wp[2] * 4.0 * cos_beta,
-                        };
-                        out.push(node);
-                        if self.full_ring {
-                            // The mirror image in the plane of w and the normal.
-                            out.push(FacetNode {
-                                phi: -node.phi,
-                                ..node
-                            });
-                        }
-                    }
+                for piece in arc.windows(2) {
+                    let ring_n = (sn, cn, ring);
+                    self.push_arc_nodes(&mut out, &w, ring_n, (piece[0], piece[1]), panels);
                 }
             }
         }
         out
+    }
+
+    /// The facet normal `h = unit(w + w')` of the cone point `w'` ([`FacetRule::cone`]) for the
+    /// fixed direction `w`, as `(θN, |φN|)`; `None` without a cone point or where `w' = −w`.
+    fn cone_normal(&self, w: &[f64; 3]) -> Option<(f64, f64)> {
+        self.cone.and_then(|c| {
+            let h = [w[0] + c[0], w[1] + c[1], w[2] + c[2]];
+            let n = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
+            (n > 1e-12).then(|| ((h[2] / n).clamp(-1.0, 1.0).acos(), h[1].atan2(h[0]).abs()))
+        })
+    }
+
+    /// The φN panel edges of the visible arc `[0, pm]` of the ring `(θN, sinθN, cosθN)` for the
+    /// fixed direction `(θ, sinθ, cosθ)`, sorted, into `arc` (module documentation): where
+    /// `β = β_c` on the ring, the `eq3` factor's kinks (φN = 90° and `cosφN = tan2θN/tanθ`) and
+    /// the cone point's azimuth (`cone`, from [`FacetRule::cone_normal`]).
+    fn arc_edges(
+        &self,
+        arc: &mut Vec<f64>,
+        (theta, st, ct): (f64, f64, f64),
+        (theta_n, sn, cn): (f64, f64, f64),
+        pm: f64,
+        cone: Option<(f64, f64)>,
+    ) {
+        let inside = |p: f64| p > 1e-12 && p < pm - 1e-12;
+        arc.clear();
+        arc.push(0.0);
+        if let Some(bc) = self.critical_beta {
+            // cosβ = cosβc on the ring.
+            let d = st * sn;
+            if d > 0.0 {
+                let c = (bc.cos() - ct * cn) / d;
+                if c.abs() < 1.0 {
+                    let p = c.acos();
+                    if inside(p) {
+                        arc.push(p);
+                    }
+                }
+            }
+        }
+        if self.azimuth_kink {
+            let view = (2.0 * theta_n).tan() / theta.tan();
+            for p in [FRAC_PI_2, if view.abs() < 1.0 { view.acos() } else { 0.0 }] {
+                if inside(p) {
+                    arc.push(p);
+                }
+            }
+        }
+        if let Some((_, p)) = cone {
+            if inside(p) {
+                arc.push(p);
+            }
+        }
+        arc.push(pm);
+        arc.sort_by(f64::total_cmp);
+    }
+
+    /// The nodes of one φN arc `[a, b]` of the ring `(sinθN, cosθN, ring weight)` for the fixed
+    /// direction `w`, pushed onto `out`: each facet normal `h` reflects `w` into
+    /// `w' = 2(w·h)h − w` with weight `ring·w_φ·(w'·z)·4(w·h)` (`g cosθ' dω' = g·w'·z·4cosβ
+    /// dω_h`, module documentation), its mirror image `−φ'` too on a full ring; facets facing
+    /// away from `w` and `w'` below the horizon contribute nothing.
+    fn push_arc_nodes(
+        &self,
+        out: &mut Vec<FacetNode>,
+        w: &[f64; 3],
+        (sn, cn, ring): (f64, f64, f64),
+        (a, b): (f64, f64),
+        panels: usize,
+    ) {
+        for (phi_n, w_p) in smoothstep_n(a, b, panels, self.phi_points) {
+            let (sp, cp) = phi_n.sin_cos();
+            let h = [sn * cp, sn * sp, cn];
+            let cos_beta = w[0] * h[0] + w[2] * h[2];
+            if cos_beta <= 0.0 {
+                continue; // the facet faces away from w
+            }
+            let wp = [
+                2.0 * cos_beta * h[0] - w[0],
+                2.0 * cos_beta * h[1],
+                2.0 * cos_beta * h[2] - w[2],
+            ];
+            if wp[2] <= 0.0 {
+                continue;
+            }
+            let node = FacetNode {
+                theta: wp[0].hypot(wp[1]).atan2(wp[2]),
+                phi: wp[1].atan2(wp[0]),
+                // g cosθ' dω' = g · w'·z · 4 cosβ dω_h
+                weight: ring * w_p * wp[2] * 4.0 * cos_beta,
+            };
+            out.push(node);
+            if self.full_ring {
+                // The mirror image in the plane of w and the normal.
+                out.push(FacetNode {
+                    phi: -node.phi,
+                    ..node
+                });
+            }
+        }
+    }
+}
+
+/// φmax of the ring at θN (`sinθN`, `cosθN`) for the fixed direction at zenith θ (`sinθ`,
+/// `cosθ`): the arc `|φN| < φmax` sends `w'` above the horizon, `w'·z = 2cosβ·cosθN − cosθ > 0`
+/// with `cosβ = sinθ·sinθN·cosφN + cosθ·cosθN`; π for the whole ring, 0 for none.
+fn phi_max(st: f64, ct: f64, sn: f64, cn: f64) -> f64 {
+    let denom = 2.0 * st * sn * cn;
+    if denom > 0.0 {
+        (ct * (1.0 - 2.0 * cn * cn) / denom).clamp(-1.0, 1.0).acos()
+    } else if 2.0 * cn * cn > 1.0 {
+        PI // θ = 0 or θN = 0: the whole ring, if any, is visible
+    } else {
+        0.0
     }
 }
 
