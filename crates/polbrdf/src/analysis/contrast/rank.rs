@@ -27,6 +27,16 @@ impl Ranking {
     }
 }
 
+impl ContrastSample {
+    /// The ranking score: `|ΔDoLP|` or the polarization contrast.
+    pub fn score(&self, by: Ranking) -> f64 {
+        match by {
+            Ranking::DeltaDolp => self.delta_dolp().abs(),
+            Ranking::PolarizationContrast => self.polarization_contrast(),
+        }
+    }
+}
+
 impl std::str::FromStr for Ranking {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {

@@ -1,7 +1,6 @@
 //! Target and background seen from one direction, and the contrast quantities derived from
 //! their Stokes vectors (the table in [`crate::analysis::contrast`]).
 
-use super::Ranking;
 use crate::geometry::direction;
 use crate::optics::stokes::Stokes;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -67,13 +66,6 @@ impl ContrastSample {
             (t[1] - b[1]).hypot(t[2] - b[2]) / mean
         } else {
             0.0
-        }
-    }
-    /// The ranking score: `|ΔDoLP|` or the polarization contrast.
-    pub fn score(&self, by: Ranking) -> f64 {
-        match by {
-            Ranking::DeltaDolp => self.delta_dolp().abs(),
-            Ranking::PolarizationContrast => self.polarization_contrast(),
         }
     }
     /// Unit vector of the viewing direction.
