@@ -26,7 +26,7 @@ import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -359,6 +359,58 @@ def lut(
         directions, azimuth, units), the materials' parameters (``materials_json``), the
         uncertainty inputs (``uncertainty_json``) and ``polbrdf_version``.
     """
+    req = _request(
+        materials, wavelength_um, theta_i, theta_r, dphi, quantities, chunks, covariance, contrast
+    )
+    # The contrast needs brdf and dolp: computed when not asked for, and dropped below.
+    for_contrast = [q for q in ("brdf", "dolp") if contrast and q not in req.quantities]
+    layout = _components(req.quantities + for_contrast)
+    ds = _dataset(req, layout, _packed(req, layout))
+    if contrast is not None:
+        _add_contrast(ds, contrast, bool(req.unc))
+    qs = req.quantities
+    ds = ds[[v for v in ds.data_vars if v.removesuffix("_stderr") in qs or v.startswith(CONTRAST)]]
+    ds.attrs.update(_CONVENTIONS)
+    ds.attrs["polbrdf_version"] = polbrdf.__version__
+    ds.attrs["materials_json"] = json.dumps(
+        {n: m.to_dict() for n, m in req.mats.items()}, ensure_ascii=False
+    )
+    if req.unc:
+        ds.attrs["uncertainty_json"] = json.dumps(req.unc, ensure_ascii=False)
+    return ds
+
+
+class _Request(NamedTuple):
+    """The arguments of :func:`lut`, checked and normalized."""
+
+    #: Names → materials (:func:`_materials`).
+    mats: dict[str, Material]
+    #: The quantities asked for, without repeats, in the order given.
+    quantities: list[str]
+    #: The axes ``(wavelength, theta_i, theta_r, dphi)`` (:func:`_axis`).
+    coords: tuple[NDArray[np.float64], ...]
+    #: The length of each geometry dimension.
+    sizes: dict[str, int]
+    #: Chunk sizes per geometry dimension, ``None`` to compute at once (:func:`_chunks`).
+    chunk: dict[str, int] | None
+    #: The uncertainty inputs per material given a covariance (:func:`_covariance`).
+    unc: dict[str, dict[str, Any]]
+
+
+def _request(
+    materials: Material | Sequence[Material] | Mapping[str, Material],
+    wavelength_um: ArrayLike,
+    theta_i: ArrayLike,
+    theta_r: ArrayLike,
+    dphi: ArrayLike,
+    quantities: Sequence[str],
+    chunks: int | Mapping[str, int] | None,
+    covariance: Mapping[str, Any] | None,
+    contrast: tuple[str, str] | None,
+) -> _Request:
+    """The arguments of :func:`lut` checked and normalized, raising on the first bad one in
+    this order: materials, quantities, axes, chunks, every wavelength inside each material's
+    index data, the contrast pair, the covariances."""
     mats = _materials(materials)
     qs = list(dict.fromkeys(quantities))
     unknown = [q for q in qs if q not in QUANTITIES]
@@ -386,37 +438,44 @@ def lut(
     if extra:
         raise ValueError(f"`covariance` names unknown material(s) {sorted(extra)}")
     unc = {n: _covariance(n, mats[n], s) for n, s in covariance.items()}
-    internal = qs + [q for q in ("brdf", "dolp") if contrast and q not in qs]
-    layout = _components(internal)
-    width = layout[-1][1].stop
-    any_unc = bool(unc)
+    return _Request(mats, qs, coords, sizes, chunk, unc)
 
+
+def _packed(req: _Request, layout: list[tuple[str, slice]]) -> Any:
+    """The values of every material stacked along a first axis, ``(M, W, I, R, P, C)``, with
+    their standard errors after them along the last (``2C``) when any material has a
+    covariance (NaN for those without): a NumPy array, or a dask array when chunked."""
     per_material = []
-    for name, m in mats.items():
-        u = unc.get(name)
-        if chunk is None:
-            a = _block(m, coords, layout, u)
+    for name, m in req.mats.items():
+        u = req.unc.get(name)
+        if req.chunk is None:
+            a = _block(m, req.coords, layout, u)
         else:
-            a = _lazy(m, coords, chunk, layout, u)
-        if any_unc and u is None:  # NaN standard errors for a material without covariance
-            if chunk is None:
+            a = _lazy(m, req.coords, req.chunk, layout, u)
+        if req.unc and u is None:  # NaN standard errors for a material without covariance
+            if req.chunk is None:
                 a = np.concatenate([a, np.full_like(a, np.nan)], axis=-1)
             else:
                 import dask.array as da
 
                 a = da.concatenate([a, da.full_like(a, np.nan)], axis=-1)
         per_material.append(a)
-    if chunk is None:
-        packed = np.stack(per_material)
-    else:
-        import dask.array as da
+    if req.chunk is None:
+        return np.stack(per_material)
+    import dask.array as da
 
-        packed = da.stack(per_material)
+    return da.stack(per_material)
 
-    shape = (len(mats), *sizes.values())
+
+def _dataset(req: _Request, layout: list[tuple[str, slice]], packed: Any) -> xr.Dataset:
+    """The Dataset of the ``packed`` values: one variable per quantity of ``layout`` (and its
+    ``_stderr`` when any material has a covariance), with their attributes, and the
+    coordinates in degrees and µm."""
+    width = layout[-1][1].stop
+    shape = (len(req.mats), *req.sizes.values())
     data_vars = {}
     for q, s in layout:
-        for suffix, offset in [("", 0)] + ([("_stderr", width)] if any_unc else []):
+        for suffix, offset in [("", 0)] + ([("_stderr", width)] if req.unc else []):
             v = packed[..., s.start + offset : s.stop + offset]
             attrs = dict(_VARIABLE_ATTRS[q])
             if suffix:
@@ -426,11 +485,12 @@ def lut(
                 data_vars[q + suffix] = (_DIMS + ("row", "col"), v.reshape(shape + (4, 4)), attrs)
             else:
                 data_vars[q + suffix] = (_DIMS, v.reshape(shape), attrs)
-    ds = xr.Dataset(
+    coords = req.coords
+    return xr.Dataset(
         data_vars,
         coords={
             # variable-length strings: netCDF's string type, Zarr v3's stable "string" dtype
-            "material": np.array(list(mats), dtype=object),
+            "material": np.array(list(req.mats), dtype=object),
             "wavelength": ("wavelength", coords[0], _COORD_ATTRS["wavelength"]),
             "theta_i": ("theta_i", coords[1], _COORD_ATTRS["theta_i"]),
             "theta_r": ("theta_r", coords[2], _COORD_ATTRS["theta_r"]),
@@ -439,17 +499,6 @@ def lut(
             "col": ("col", np.arange(4), _COORD_ATTRS["col"]),
         },
     )
-    if contrast is not None:
-        _add_contrast(ds, contrast, any_unc)
-    ds = ds[[v for v in ds.data_vars if v.removesuffix("_stderr") in qs or v.startswith(CONTRAST)]]
-    ds.attrs.update(_CONVENTIONS)
-    ds.attrs["polbrdf_version"] = polbrdf.__version__
-    ds.attrs["materials_json"] = json.dumps(
-        {n: m.to_dict() for n, m in mats.items()}, ensure_ascii=False
-    )
-    if unc:
-        ds.attrs["uncertainty_json"] = json.dumps(unc, ensure_ascii=False)
-    return ds
 
 
 def _add_contrast(ds: xr.Dataset, pair: tuple[str, str], with_stderr: bool) -> None:

@@ -1,6 +1,6 @@
 //! `polbrdf._polbrdf`: the compiled half of the Python package `polbrdf`.
 //!
-//! The Python half (`python/polbrdf/__init__.py`) broadcasts the user's angles with NumPy and
+//! The Python half (`python/polbrdf/_common.py`) broadcasts the user's angles with NumPy and
 //! hands this module four contiguous 1-D float64 arrays of equal length. Everything here works
 //! on those flat arrays with the GIL released: in parallel chunks (rayon), each chunk converted
 //! from degrees on the stack when needed, validated as a core `polbrdf::GeometryBatch` and evaluated by

@@ -8,8 +8,11 @@ the code. Regenerate it (one command, from the repository root, with the package
 
 from __future__ import annotations
 
+import importlib
 import inspect
 import os
+import pickle
+import typing
 from pathlib import Path
 
 import polbrdf
@@ -72,3 +75,23 @@ def test_api_reference_matches_the_docstrings() -> None:
         "docs/python-api.md differs from the package's docstrings; regenerate it: "
         "UPDATE_API_REFERENCE=1 python -m pytest python/tests/test_api_reference.py"
     )
+
+
+def test_every_public_name_says_where_it_is_imported_from() -> None:
+    # The NumPy API is defined in private modules by concern (`polbrdf._evaluate`, `_thermal`,
+    # …) and imported as `polbrdf.X`: its `__module__` is that import path (or a public
+    # submodule's), never a private module, so its repr, help() and pickles name `polbrdf`.
+    for name in polbrdf.__all__:
+        module = getattr(getattr(polbrdf, name), "__module__", None)
+        if module is not None:
+            assert not any(part.startswith("_") for part in module.split(".")), (name, module)
+            assert getattr(importlib.import_module(module), name) is getattr(polbrdf, name)
+    # A result pickles by that path, its annotations resolve, the overloads are registered.
+    result = polbrdf.evaluate(polbrdf.Material.preset("paint"), 30, 0, 30, 180)
+    data = pickle.dumps(result)
+    assert b"polbrdf" in data and b"_evaluate" not in data
+    back = pickle.loads(data)
+    assert type(back) is polbrdf.Evaluation and back.brdf == result.brdf
+    for cls in (polbrdf.Evaluation, polbrdf.Emissivity, polbrdf.Radiance):
+        assert set(typing.get_type_hints(cls)) == set(cls._fields)
+    assert len(typing.get_overloads(polbrdf.radiance)) == 2
