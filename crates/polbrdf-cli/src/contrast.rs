@@ -291,70 +291,114 @@ fn marks(study: &ContrastStudy) -> Marks {
     }
 }
 
-/// The polar maps (PNG and SVG) of a study.
-// Over 100 lines: one panel after the other, sharing the colour limits and marks computed at
-// the top; split, the pieces would pass them all around.
+/// The polar maps (PNG and SVG) of a study: each surface's DoLP, the comparisons (ΔDoLP,
+/// intensity ratio, ΔAoLP, polarization contrast), an overview of the two DoLP maps beside the
+/// ranking score's, and in a scene the radiance difference.
 fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), CliError> {
-    let (map, opts, problem) = (&study.map, &study.options, &study.problem);
-    let (t_name, b_name) = (&study.target.name, &study.background.name);
-    let nulls = study
-        .nulls
-        .as_ref()
-        .map(|n| (n.target.clone(), n.background.clone()));
-    let nulls = nulls.as_ref();
-    let grid = &map.grid;
-    let values =
-        |f: fn(&ContrastSample) -> f64| -> Vec<f64> { map.samples.iter().map(f).collect() };
     let Marks {
         light_t,
         light_b,
         light,
         ranked,
     } = marks(study);
-    let input = problem
+    let (ranked_delta, ranked_pc) = match study.options.by {
+        Ranking::DeltaDolp => (ranked, light.clone()),
+        Ranking::PolarizationContrast => (light.clone(), ranked),
+    };
+    let (dolp_t, dolp_b) = dolp_panels(study, light_t, light_b)?;
+    let delta_dolp = delta_dolp_panel(study, ranked_delta)?;
+    let ratio = ratio_panel(study, light.clone())?;
+    let aolp = aolp_panel(study, light.clone())?;
+    let pol_contrast = polarization_contrast_panel(study, ranked_pc)?;
+    let third = match study.options.by {
+        Ranking::DeltaDolp => delta_dolp.clone(),
+        Ranking::PolarizationContrast => pol_contrast.clone(),
+    };
+    let overview = PolarFigure {
+        panel_size: PANEL,
+        columns: 3,
+        panels: vec![dolp_t.clone(), dolp_b.clone(), third],
+    };
+    let mut list = vec![
+        ("dolp_target", single(dolp_t)),
+        ("dolp_background", single(dolp_b)),
+        ("delta_dolp", single(delta_dolp)),
+        ("intensity_ratio", single(ratio)),
+        ("aolp_difference", single(aolp)),
+        ("polarization_contrast", single(pol_contrast)),
+        ("overview", overview),
+    ];
+    if study.nulls.is_some() {
+        list.push((
+            "radiance_difference",
+            single(radiance_difference_panel(study, light)?),
+        ));
+    }
+    render_all(files, &list)
+}
+
+/// One value per sample of the study's map.
+fn sample_values(study: &ContrastStudy, f: impl Fn(&ContrastSample) -> f64) -> Vec<f64> {
+    study.map.samples.iter().map(f).collect()
+}
+
+/// The largest finite |value| of `v` (aligned with the map's samples) over the directions that
+/// are ranked (θr ≤ --max-zenith-deg): the colour limit of a map. Toward grazing, values (and,
+/// for some parameter sets, unphysical ones) would set the scale of the whole map; beyond, the
+/// colours saturate.
+fn ranked_max_abs(study: &ContrastStudy, v: &[f64]) -> f64 {
+    let max_zenith = study.options.max_zenith;
+    v.iter()
+        .zip(&study.map.samples)
+        .filter(|(_, s)| s.theta_r <= max_zenith * (1.0 + 1e-12))
+        .map(|(x, _)| *x)
+        .filter(|x| x.is_finite())
+        .fold(0.0, |m: f64, x| m.max(x.abs()))
+}
+
+/// The polarization null of a surface (in a scene): a dotted locus on its DoLP map.
+fn null_marks(v: &[(f64, f64)]) -> Vec<PolarMark> {
+    v.iter()
+        .enumerate()
+        .map(|(k, (t, p))| PolarMark {
+            theta_deg: deg(*t),
+            phi_deg: deg(*p),
+            shape: MarkShape::Dot,
+            label: String::new(),
+            legend: if k == 0 {
+                "polarization null".into()
+            } else {
+                String::new()
+            },
+        })
+        .collect()
+}
+
+/// The DoLP maps of the target and the background, with `light_t` and `light_b` and each
+/// surface's null locus. In a scene (thermal emission: DoLP of a few per cent) both share a
+/// scale from 0 to the larger of their maxima over the ranked directions, when that is below
+/// 0.5; otherwise the full [0, 1].
+fn dolp_panels(
+    study: &ContrastStudy,
+    light_t: Vec<PolarMark>,
+    light_b: Vec<PolarMark>,
+) -> Result<(PolarPanel, PolarPanel), CliError> {
+    let (t_name, b_name) = (&study.target.name, &study.background.name);
+    let grid = &study.map.grid;
+    let (null_t, null_b) = study.nulls.as_ref().map_or((Vec::new(), Vec::new()), |n| {
+        (null_marks(&n.target), null_marks(&n.background))
+    });
+    let input = study
+        .problem
         .light()
         .map_or_else(String::new, |l| input_stokes(&l, (" (input S = ", ")")));
-    // Colour limits from the directions that are ranked (θr ≤ --max-zenith-deg): toward
-    // grazing, values (and, for some parameter sets, unphysical ones) would set the scale of
-    // the whole map; beyond, the colours saturate. `v` is aligned with the map's samples.
-    let max_abs = |v: &[f64]| {
-        v.iter()
-            .zip(&map.samples)
-            .filter(|(_, s)| s.theta_r <= opts.max_zenith * (1.0 + 1e-12))
-            .map(|(x, _)| *x)
-            .filter(|x| x.is_finite())
-            .fold(0.0, |m: f64, x| m.max(x.abs()))
-    };
-
-    // The polarization null of each surface (in a scene): a dotted locus on its DoLP map.
-    let null_marks = |v: &[(f64, f64)]| -> Vec<PolarMark> {
-        v.iter()
-            .enumerate()
-            .map(|(k, (t, p))| PolarMark {
-                theta_deg: deg(*t),
-                phi_deg: deg(*p),
-                shape: MarkShape::Dot,
-                label: String::new(),
-                legend: if k == 0 {
-                    "polarization null".into()
-                } else {
-                    String::new()
-                },
-            })
-            .collect()
-    };
-    let (null_t, null_b) = nulls.map_or((Vec::new(), Vec::new()), |(t, b)| {
-        (null_marks(t), null_marks(b))
-    });
-    // In a scene (thermal emission: DoLP of a few per cent) both DoLP maps share a scale from
-    // 0 to the larger of their maxima over the ranked directions, when that is below 0.5.
     let (dt_values, db_values) = (
-        values(ContrastSample::dolp_target),
-        values(ContrastSample::dolp_background),
+        sample_values(study, ContrastSample::dolp_target),
+        sample_values(study, ContrastSample::dolp_background),
     );
-    let dolp_top = max_abs(&dt_values).max(max_abs(&db_values));
+    let dolp_top = ranked_max_abs(study, &dt_values).max(ranked_max_abs(study, &db_values));
     let dolp_scale = || {
-        if nulls.is_some() && dolp_top < 0.5 {
+        if study.nulls.is_some() && dolp_top < 0.5 {
             ColorScale::linear(
                 Colormap::Viridis,
                 0.0,
@@ -377,95 +421,86 @@ fn figures(files: &mut Vec<OutputFile>, study: &ContrastStudy) -> Result<(), Cli
         scale: dolp_scale(),
         marks: light_b.into_iter().chain(null_b).collect(),
     };
-    let delta = values(ContrastSample::delta_dolp);
-    let lim = nice_ceil(max_abs(&delta).max(1e-3));
-    let delta_dolp = PolarPanel {
+    Ok((dolp_t, dolp_b))
+}
+
+/// ΔDoLP = DoLP(target) − DoLP(background), on a symmetric diverging scale.
+fn delta_dolp_panel(study: &ContrastStudy, marks: Vec<PolarMark>) -> Result<PolarPanel, CliError> {
+    let delta = sample_values(study, ContrastSample::delta_dolp);
+    let lim = nice_ceil(ranked_max_abs(study, &delta).max(1e-3));
+    Ok(PolarPanel {
         title: "ΔDoLP = DoLP(target) − DoLP(background)".into(),
-        grid: polar_grid(grid, delta)?,
+        grid: polar_grid(&study.map.grid, delta)?,
         scale: ColorScale::linear(Colormap::Diverging, -lim, lim, "ΔDoLP"),
-        marks: if opts.by == Ranking::DeltaDolp {
-            ranked.clone()
-        } else {
-            light.clone()
-        },
-    };
-    let ratio = values(ContrastSample::intensity_ratio);
-    let decades = (max_abs(&ratio.iter().map(|r| r.log10()).collect::<Vec<_>>()) * 2.0)
-        .ceil()
-        .clamp(1.0, 8.0)
-        / 2.0;
-    let ratio_panel = PolarPanel {
+        marks,
+    })
+}
+
+/// The intensity ratio S₀(target) / S₀(background), on a logarithmic scale symmetric about 1
+/// (half-decade steps, 0.5 to 4 decades).
+fn ratio_panel(study: &ContrastStudy, marks: Vec<PolarMark>) -> Result<PolarPanel, CliError> {
+    let ratio = sample_values(study, ContrastSample::intensity_ratio);
+    let logs: Vec<f64> = ratio.iter().map(|r| r.log10()).collect();
+    let decades = (ranked_max_abs(study, &logs) * 2.0).ceil().clamp(1.0, 8.0) / 2.0;
+    Ok(PolarPanel {
         title: "Intensity ratio S₀(target) / S₀(background)".into(),
-        grid: polar_grid(grid, ratio)?,
+        grid: polar_grid(&study.map.grid, ratio)?,
         scale: ColorScale::log10(
             Colormap::Diverging,
             10f64.powf(-decades),
             10f64.powf(decades),
             "intensity ratio I_t / I_b",
         ),
-        marks: light.clone(),
-    };
-    let d_aolp: Vec<f64> = map
-        .samples
-        .iter()
-        .map(|s| s.aolp_difference().to_degrees())
-        .collect();
-    let aolp = PolarPanel {
+        marks,
+    })
+}
+
+/// ΔAoLP = AoLP(target) − AoLP(background) in degrees, on a cyclic scale; the title says when
+/// it is 0 everywhere (below 0.05° over the ranked directions).
+fn aolp_panel(study: &ContrastStudy, marks: Vec<PolarMark>) -> Result<PolarPanel, CliError> {
+    let d_aolp = sample_values(study, |s| s.aolp_difference().to_degrees());
+    Ok(PolarPanel {
         title: format!(
             "ΔAoLP = AoLP(target) − AoLP(background){}",
-            if max_abs(&d_aolp) < 0.05 {
+            if ranked_max_abs(study, &d_aolp) < 0.05 {
                 ": 0 everywhere"
             } else {
                 ""
             }
         ),
-        grid: polar_grid(grid, d_aolp)?,
+        grid: polar_grid(&study.map.grid, d_aolp)?,
         scale: angle_scale(Colormap::CyclicDiverging, "ΔAoLP (°)"),
-        marks: light.clone(),
-    };
-    let pc = values(ContrastSample::polarization_contrast);
-    let pc_max = nice_ceil(max_abs(&pc).max(1e-3));
-    let pol_contrast = PolarPanel {
-        title: "Polarization contrast |ΔS_lin| / mean S₀".into(),
-        grid: polar_grid(grid, pc)?,
-        scale: ColorScale::linear(Colormap::Viridis, 0.0, pc_max, "|ΔS_lin| / mean S₀"),
-        marks: if opts.by == Ranking::PolarizationContrast {
-            ranked
-        } else {
-            light.clone()
-        },
-    };
+        marks,
+    })
+}
 
-    let third = match opts.by {
-        Ranking::DeltaDolp => delta_dolp.clone(),
-        Ranking::PolarizationContrast => pol_contrast.clone(),
-    };
-    let overview = PolarFigure {
-        panel_size: PANEL,
-        columns: 3,
-        panels: vec![dolp_t.clone(), dolp_b.clone(), third],
-    };
-    let mut list = vec![
-        ("dolp_target", single(dolp_t)),
-        ("dolp_background", single(dolp_b)),
-        ("delta_dolp", single(delta_dolp)),
-        ("intensity_ratio", single(ratio_panel)),
-        ("aolp_difference", single(aolp)),
-        ("polarization_contrast", single(pol_contrast)),
-        ("overview", overview),
-    ];
-    if nulls.is_some() {
-        let diff = values(ContrastSample::radiance_difference);
-        let lim = nice_ceil(max_abs(&diff).max(1e-30));
-        list.push((
-            "radiance_difference",
-            single(PolarPanel {
-                title: "Radiance difference S₀(target) − S₀(background)".into(),
-                grid: polar_grid(grid, diff)?,
-                scale: ColorScale::linear(Colormap::Diverging, -lim, lim, "ΔS₀"),
-                marks: light,
-            }),
-        ));
-    }
-    render_all(files, &list)
+/// The polarization contrast |ΔS_lin| / mean S₀ (docs/model.md §11), from 0.
+fn polarization_contrast_panel(
+    study: &ContrastStudy,
+    marks: Vec<PolarMark>,
+) -> Result<PolarPanel, CliError> {
+    let pc = sample_values(study, ContrastSample::polarization_contrast);
+    let pc_max = nice_ceil(ranked_max_abs(study, &pc).max(1e-3));
+    Ok(PolarPanel {
+        title: "Polarization contrast |ΔS_lin| / mean S₀".into(),
+        grid: polar_grid(&study.map.grid, pc)?,
+        scale: ColorScale::linear(Colormap::Viridis, 0.0, pc_max, "|ΔS_lin| / mean S₀"),
+        marks,
+    })
+}
+
+/// The radiance difference S₀(target) − S₀(background) of a scene, on a symmetric diverging
+/// scale.
+fn radiance_difference_panel(
+    study: &ContrastStudy,
+    marks: Vec<PolarMark>,
+) -> Result<PolarPanel, CliError> {
+    let diff = sample_values(study, ContrastSample::radiance_difference);
+    let lim = nice_ceil(ranked_max_abs(study, &diff).max(1e-30));
+    Ok(PolarPanel {
+        title: "Radiance difference S₀(target) − S₀(background)".into(),
+        grid: polar_grid(&study.map.grid, diff)?,
+        scale: ColorScale::linear(Colormap::Diverging, -lim, lim, "ΔS₀"),
+        marks,
+    })
 }

@@ -2,7 +2,9 @@
 
 use crate::error::CliError;
 use crate::output::write_output;
-use polbrdf_fit::{fit, fit_per_wavelength, Bound, FitOptions, FitResult, Measurement, Param};
+use polbrdf_fit::{
+    fit, fit_per_wavelength, Bound, FitOptions, FitResult, Measurement, Param, WavelengthFit,
+};
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -78,6 +80,15 @@ pub fn run(args: &Args<'_>) -> Result<(), CliError> {
 
 /// The one-screen summary printed on the terminal.
 fn summary(r: &FitResult, data: &Path, n: usize) -> String {
+    let mut s = summary_heading(r, data, n);
+    s += &parameter_table(r);
+    s += &correlation_table(r);
+    s += &zero_bistatic_line(r);
+    s
+}
+
+/// The summary's heading: the data, whether the fit converged, χ² and the fit's warnings.
+fn summary_heading(r: &FitResult, data: &Path, n: usize) -> String {
     let mut s = format!(
         "polbrdf fit: {} measurement(s) from {}, {} free parameter(s)\n",
         n,
@@ -110,7 +121,13 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
     for w in &r.warnings {
         s += &format!("  warning: {w}\n");
     }
-    s += &format!(
+    s
+}
+
+/// One row per free parameter (value, standard error, relative error; or the 95 % upper limit
+/// of one at its lower bound), then a note on each parameter at its bound.
+fn parameter_table(r: &FitResult) -> String {
+    let mut s = format!(
         "  {:<10} {:>16} {:>14} {:>10}\n",
         "parameter", "value", "std. error", "rel."
     );
@@ -138,33 +155,49 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
                     format!("{:.1}", r.values[k]),
                     limit
                 );
-                notes += &format!(
-                    "\n  `{}` ends at its lower bound {}: the data prefer no larger value. The one-sided \
-                     95 % upper limit is where the best χ² over the other parameters rises by 2.706{}.",
-                    p.name(),
-                    r.values[k],
-                    if r.scaled_by_residuals { " × χ²/dof" } else { "" }
-                );
-                if let Some(c) = correlation_at_limit {
-                    let strongest = r
-                        .params
-                        .iter()
-                        .zip(c)
-                        .enumerate()
-                        .filter(|(j, _)| *j != k)
-                        .max_by(|a, b| a.1 .1.abs().total_cmp(&b.1 .1.abs()));
-                    if let Some((_, (q, v))) = strongest {
-                        notes += &format!(
-                            " At that limit it is correlated {v:+.3} with `{}`: what it trades off against.",
-                            q.name()
-                        );
-                    }
-                }
-                notes += "\n";
+                notes += &lower_bound_note(r, k, correlation_at_limit.as_deref());
             }
         }
     }
-    s += &notes;
+    s + &notes
+}
+
+/// The note on parameter `k` at its lower bound: what its upper limit means, and (given its
+/// correlations at that limit) the parameter it trades off against most.
+fn lower_bound_note(r: &FitResult, k: usize, correlation_at_limit: Option<&[f64]>) -> String {
+    let p = &r.params[k];
+    let mut note = format!(
+        "\n  `{}` ends at its lower bound {}: the data prefer no larger value. The one-sided \
+         95 % upper limit is where the best χ² over the other parameters rises by 2.706{}.",
+        p.name(),
+        r.values[k],
+        if r.scaled_by_residuals {
+            " × χ²/dof"
+        } else {
+            ""
+        }
+    );
+    if let Some(c) = correlation_at_limit {
+        let strongest = r
+            .params
+            .iter()
+            .zip(c)
+            .enumerate()
+            .filter(|(j, _)| *j != k)
+            .max_by(|a, b| a.1 .1.abs().total_cmp(&b.1 .1.abs()));
+        if let Some((_, (q, v))) = strongest {
+            note += &format!(
+                " At that limit it is correlated {v:+.3} with `{}`: what it trades off against.",
+                q.name()
+            );
+        }
+    }
+    note + "\n"
+}
+
+/// The correlation matrix of the free parameters (none for a single one).
+fn correlation_table(r: &FitResult) -> String {
+    let mut s = String::new();
     if r.params.len() > 1 {
         s += "\n  correlation:\n";
         for (k, p) in r.params.iter().enumerate() {
@@ -175,8 +208,13 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
             s += "\n";
         }
     }
-    if let Some(z) = &r.zero_bistatic {
-        s += &format!(
+    s
+}
+
+/// The zero-bistatic start's line (eq. 5), when the fit made one.
+fn zero_bistatic_line(r: &FitResult) -> String {
+    r.zero_bistatic.as_ref().map_or_else(String::new, |z| {
+        format!(
             "\n  zero-bistatic start (eq. 5 with the start values of n, k, ρ_D, ρ_V): a = {:.4} ± {:.2e} sr⁻¹,\n    b = {:.4} ± {:.2e} rad⁻² ({} backscatter points{})\n",
             z.a,
             z.stderr_a,
@@ -188,9 +226,8 @@ fn summary(r: &FitResult, data: &Path, n: usize) -> String {
             } else {
                 format!(", {} excluded: within noise of the volume term", z.excluded.len())
             }
-        );
-    }
-    s
+        )
+    })
 }
 
 /// `polbrdf fit --per-wavelength`: one fit per wavelength of the data.
@@ -202,11 +239,48 @@ fn run_per_wavelength(
     opts: &FitOptions,
 ) -> Result<(), CliError> {
     let fits = fit_per_wavelength(base, free, data, opts)?;
+    let s = per_wavelength_summary(args.data, data.len(), free, &fits);
+    let json = serde_json::to_string_pretty(&per_wavelength_json(args.data, free, &fits))
+        .expect("JSON of finite and null values");
+    // Files first, then standard output, then the summary (as `run`).
+    if let Some(path) = args.output {
+        polbrdf_io::write_atomic(path, (json.clone() + "\n").as_bytes())?;
+    }
+    if let Some(path) = args.index_out {
+        polbrdf_io::write_atomic(path, index_file(args.data, free, &fits)?.as_bytes())?;
+    }
+    if args.output.is_none() {
+        write_output(None, (json + "\n").as_bytes())?;
+    }
+    crate::output::note(&s);
+    let failed: Vec<f64> = fits
+        .iter()
+        .filter(|f| f.result.is_err())
+        .map(|f| f.wavelength_um)
+        .collect();
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::Invalid(format!(
+            "the fit was refused at {} wavelength(s) ({} µm); the others were written",
+            failed.len(),
+            failed
+                .iter()
+                .map(|l| l.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )))
+    }
+}
+
+/// The per-wavelength summary: one row per wavelength with each free parameter (value ± standard
+/// error, or the upper limit of one at its bound) and χ²/dof, or why the fit was refused.
+fn per_wavelength_summary(data: &Path, n: usize, free: &[Param], fits: &[WavelengthFit]) -> String {
     let mut s = format!(
         "polbrdf fit --per-wavelength: {} measurement(s) from {} at {} wavelength(s), {} free \
          parameter(s)\n\n  {:>10}",
-        data.len(),
-        args.data.display(),
+        n,
+        data.display(),
         fits.len(),
         free.len(),
         "λ (µm)"
@@ -215,9 +289,7 @@ fn run_per_wavelength(
         s += &format!(" {:>24}", p.name());
     }
     s += "   χ²/dof\n";
-    let mut entries = Vec::new();
-    let mut failed = Vec::new();
-    for f in &fits {
+    for f in fits {
         s += &format!("  {:>10.4}", f.wavelength_um);
         match &f.result {
             Ok(r) => {
@@ -238,62 +310,53 @@ fn run_per_wavelength(
                     r.reduced_chi2,
                     if r.converged { "" } else { "  NOT CONVERGED" }
                 );
-                let mut v = polbrdf_tasks::fit::to_json(r, args.data);
-                v["wavelength_um"] = Value::from(f.wavelength_um);
-                entries.push(v);
             }
-            Err(e) => {
-                s += &format!("   refused: {e}\n");
-                entries.push(json!({"wavelength_um": f.wavelength_um, "refused": e.to_string()}));
-                failed.push(f.wavelength_um);
-            }
+            Err(e) => s += &format!("   refused: {e}\n"),
         }
     }
-    let doc = json!({
+    s
+}
+
+/// The per-wavelength fit document: each wavelength's fit (as `fit.json`, with its
+/// wavelength) or why it was refused, the parameter order and the data file.
+fn per_wavelength_json(data: &Path, free: &[Param], fits: &[WavelengthFit]) -> Value {
+    let entries: Vec<Value> = fits
+        .iter()
+        .map(|f| match &f.result {
+            Ok(r) => {
+                let mut v = polbrdf_tasks::fit::to_json(r, data);
+                v["wavelength_um"] = Value::from(f.wavelength_um);
+                v
+            }
+            Err(e) => json!({"wavelength_um": f.wavelength_um, "refused": e.to_string()}),
+        })
+        .collect();
+    json!({
         "per_wavelength": entries,
         "parameter_order": free.iter().map(|p| p.name()).collect::<Vec<_>>(),
-        "data": args.data.display().to_string(),
-    });
-    let json = serde_json::to_string_pretty(&doc).expect("JSON of finite and null values");
-    // Files first, then standard output, then the summary (as `run`).
-    if let Some(path) = args.output {
-        polbrdf_io::write_atomic(path, (json.clone() + "\n").as_bytes())?;
-    }
-    if let Some(path) = args.index_out {
-        let n_at = free.iter().position(|p| *p == Param::N).ok_or_else(|| {
-            CliError::Invalid("--index-out needs `n` among the free parameters".into())
-        })?;
-        let k_at = free.iter().position(|p| *p == Param::K);
-        let mut text = format!(
-            "# Effective index fitted by `polbrdf fit --per-wavelength` to {}\n\
-             REFERENCES: |\n    Fitted with polbrdf to {}\nCOMMENTS: |\n    n, k per wavelength; \
-             the fit's standard errors are in its fit.json\nDATA:\n  - type: tabulated nk\n    data: |\n",
-            args.data.display(),
-            args.data.display()
-        );
-        for f in &fits {
-            if let Ok(r) = &f.result {
-                let k = k_at.map_or(r.spec.k, |j| r.values[j]);
-                text += &format!("        {} {} {}\n", f.wavelength_um, r.values[n_at], k);
-            }
+        "data": data.display().to_string(),
+    })
+}
+
+/// The `--index-out` file: the fitted effective index (n, and k where it is free, else the
+/// base material's) per wavelength that was fitted, as a refractiveindex.info YAML table.
+fn index_file(data: &Path, free: &[Param], fits: &[WavelengthFit]) -> Result<String, CliError> {
+    let n_at = free.iter().position(|p| *p == Param::N).ok_or_else(|| {
+        CliError::Invalid("--index-out needs `n` among the free parameters".into())
+    })?;
+    let k_at = free.iter().position(|p| *p == Param::K);
+    let mut text = format!(
+        "# Effective index fitted by `polbrdf fit --per-wavelength` to {}\n\
+         REFERENCES: |\n    Fitted with polbrdf to {}\nCOMMENTS: |\n    n, k per wavelength; \
+         the fit's standard errors are in its fit.json\nDATA:\n  - type: tabulated nk\n    data: |\n",
+        data.display(),
+        data.display()
+    );
+    for f in fits {
+        if let Ok(r) = &f.result {
+            let k = k_at.map_or(r.spec.k, |j| r.values[j]);
+            text += &format!("        {} {} {}\n", f.wavelength_um, r.values[n_at], k);
         }
-        polbrdf_io::write_atomic(path, text.as_bytes())?;
     }
-    if args.output.is_none() {
-        write_output(None, (json + "\n").as_bytes())?;
-    }
-    crate::output::note(&s);
-    if failed.is_empty() {
-        Ok(())
-    } else {
-        Err(CliError::Invalid(format!(
-            "the fit was refused at {} wavelength(s) ({} µm); the others were written",
-            failed.len(),
-            failed
-                .iter()
-                .map(|l| l.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )))
-    }
+    Ok(text)
 }

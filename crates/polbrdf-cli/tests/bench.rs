@@ -130,6 +130,50 @@ fn bench_reports_rates_latency_emission_checksum_and_cpu_as_json() {
 }
 
 #[test]
+fn bench_table_goes_to_stderr_and_json_alone_to_stdout() {
+    // The stream rule: standard output carries only data results (the `--json` object); the
+    // table is for a person, on standard error.
+    let args = [
+        "bench",
+        "--count",
+        "1000",
+        "--threads",
+        "1",
+        "--repeats",
+        "5",
+    ];
+    let table = polbrdf(&args);
+    assert!(table.status.success(), "{}", stderr(&table));
+    assert!(
+        table.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&table.stdout)
+    );
+    let text = stderr(&table);
+    assert!(
+        text.starts_with(
+            "polbrdf bench: 1000 random valid geometries of `paint` through the batch API, \
+             medians of 5 repeats\n"
+        ),
+        "{text}"
+    );
+    let json = polbrdf(&[&args[..], &["--json"]].concat());
+    assert!(json.status.success(), "{}", stderr(&json));
+    assert_eq!(stderr(&json), "", "nothing but the JSON object is printed");
+    let doc: serde_json::Value = serde_json::from_slice(&json.stdout).expect("JSON on stdout");
+    // Both renderings report the same run: the checksums (deterministic) agree.
+    let sum = |key: &str| doc["checksum"][key].as_f64().unwrap();
+    let line = format!(
+        "checksum: Σ brdf = {:.12e}, Σ dolp = {:.12e}, Σ F = {:.12e} (identical for every \
+         thread count)\n",
+        sum("brdf_sum"),
+        sum("dolp_sum"),
+        sum("mueller_sum")
+    );
+    assert!(text.ends_with(&line), "{text}\nwanted: {line}");
+}
+
+#[test]
 fn bench_refuses_too_few_repeats_and_zero_counts() {
     for args in [
         &["bench", "--count", "100", "--repeats", "3"][..],
