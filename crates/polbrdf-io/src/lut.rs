@@ -310,6 +310,34 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
             keys: KEYS,
         },
     )?);
+    let materials = materials(&doc)?;
+    let zenith = (
+        (|x: f64| (0.0..=180.0).contains(&x)) as fn(f64) -> bool,
+        "a zenith angle in [0, 180] degrees",
+    );
+    let cfg = LutConfig {
+        path: path.to_path_buf(),
+        wavelength_um: doc.axis("wavelength_um", (|x| x > 0.0, "a wavelength > 0 µm"))?,
+        theta_i_deg: doc.axis("theta_i_deg", zenith)?,
+        theta_r_deg: doc.axis("theta_r_deg", zenith)?,
+        dphi_deg: doc.axis(
+            "dphi_deg",
+            (
+                |x| x.abs() <= polbrdf::MAX_AZIMUTH_DEG,
+                "an azimuth difference within ±1e8° (polbrdf::MAX_AZIMUTH_DEG: beyond it the \
+                 angle has no digit left)",
+            ),
+        )?,
+        quantities: quantities(&doc)?,
+        materials,
+    };
+    check_rows(&cfg)?;
+    check_wavelengths(&doc, &cfg)?;
+    Ok(cfg)
+}
+
+/// `materials`: 1 to [`MAX_MATERIALS`] presets or files, loaded, with distinct names.
+fn materials(doc: &Doc<'_>) -> Result<Vec<(String, MaterialSpec)>> {
     let names = doc.strings("materials")?;
     if names.is_empty() || names.len() > MAX_MATERIALS {
         return Err(doc.err(
@@ -328,53 +356,40 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
         }
         materials.push((name, spec));
     }
-    let zenith = (
-        (|x: f64| (0.0..=180.0).contains(&x)) as fn(f64) -> bool,
-        "a zenith angle in [0, 180] degrees",
-    );
-    let cfg = LutConfig {
-        path: path.to_path_buf(),
-        wavelength_um: doc.axis("wavelength_um", (|x| x > 0.0, "a wavelength > 0 µm"))?,
-        theta_i_deg: doc.axis("theta_i_deg", zenith)?,
-        theta_r_deg: doc.axis("theta_r_deg", zenith)?,
-        dphi_deg: doc.axis(
-            "dphi_deg",
-            (
-                |x| x.abs() <= polbrdf::MAX_AZIMUTH_DEG,
-                "an azimuth difference within ±1e8° (polbrdf::MAX_AZIMUTH_DEG: beyond it the \
-                 angle has no digit left)",
-            ),
-        )?,
-        quantities: match doc.0.has("quantities") {
-            false => vec![Quantity::Mueller, Quantity::Brdf, Quantity::Dolp],
-            true => {
-                let mut q = Vec::new();
-                for s in doc.strings("quantities")? {
-                    match Quantity::ALL.iter().find(|(n, _)| *n == s) {
-                        Some((_, x)) if !q.contains(x) => q.push(*x),
-                        Some(_) => {
-                            return Err(doc.err("quantities", format!("`{s}` appears twice")))
-                        }
-                        None => {
-                            return Err(doc.err(
-                                "quantities",
-                                format!(
-                                    "unknown quantity `{s}` (known: {})",
-                                    Quantity::ALL.map(|(n, _)| n).join(", ")
-                                ),
-                            ))
-                        }
-                    }
-                }
-                if q.is_empty() {
-                    return Err(doc.err("quantities", "an empty array: name a quantity"));
-                }
-                q.sort();
-                q
+    Ok(materials)
+}
+
+/// `quantities`, each once, in the order of the table's columns; mueller, brdf and dolp when
+/// absent.
+fn quantities(doc: &Doc<'_>) -> Result<Vec<Quantity>> {
+    if !doc.0.has("quantities") {
+        return Ok(vec![Quantity::Mueller, Quantity::Brdf, Quantity::Dolp]);
+    }
+    let mut q = Vec::new();
+    for s in doc.strings("quantities")? {
+        match Quantity::ALL.iter().find(|(n, _)| *n == s) {
+            Some((_, x)) if !q.contains(x) => q.push(*x),
+            Some(_) => return Err(doc.err("quantities", format!("`{s}` appears twice"))),
+            None => {
+                return Err(doc.err(
+                    "quantities",
+                    format!(
+                        "unknown quantity `{s}` (known: {})",
+                        Quantity::ALL.map(|(n, _)| n).join(", ")
+                    ),
+                ))
             }
-        },
-        materials,
-    };
+        }
+    }
+    if q.is_empty() {
+        return Err(doc.err("quantities", "an empty array: name a quantity"));
+    }
+    q.sort();
+    Ok(q)
+}
+
+/// The table's rows (materials × wavelengths × theta_i × theta_r × dphi) within [`MAX_ROWS`].
+fn check_rows(cfg: &LutConfig) -> Result<()> {
     let rows = [
         cfg.materials.len(),
         cfg.wavelength_um.len(),
@@ -386,14 +401,18 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
     .try_fold(1u64, |acc, &n| acc.checked_mul(n as u64));
     if rows.is_none_or(|r| r > MAX_ROWS) {
         return Err(Error::File {
-            path: path.to_path_buf(),
+            path: cfg.path.clone(),
             message: format!(
                 "the table would have more than {MAX_ROWS} rows (materials × wavelengths × \
                  theta_i × theta_r × dphi): split it"
             ),
         });
     }
-    // A wavelength outside a spectral index's data: refused here, before any output.
+    Ok(())
+}
+
+/// Every wavelength inside every spectral index's data: refused here, before any output.
+fn check_wavelengths(doc: &Doc<'_>, cfg: &LutConfig) -> Result<()> {
     for (name, spec) in &cfg.materials {
         if let Some(j) = cfg
             .wavelength_um
@@ -411,7 +430,7 @@ pub fn parse_lut_config(text: &str, path: &Path) -> Result<LutConfig> {
             ));
         }
     }
-    Ok(cfg)
+    Ok(())
 }
 
 /// Reads a configuration file and parses it ([`parse_lut_config`]).

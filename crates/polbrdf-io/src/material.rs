@@ -37,56 +37,79 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
     let mut spec = MaterialSpec::new(f64::NAN, f64::NAN);
     spec.sigma_deg = None;
     spec.k = 0.0;
-    let mut have_n = false;
     for (known, _, v) in doc.keys() {
-        let value = match v {
-            Value::Float(x) => KeyValue::Number(*x),
-            Value::Integer(i) => KeyValue::Number(*i as f64),
-            Value::String(t) => KeyValue::Text(t.clone()),
-            Value::Boolean(b) => KeyValue::Bool(*b),
-            other => {
-                let want = polbrdf::model::spec::expected(known).unwrap_or("a value");
-                return Err(doc.error(known, format!("expected {want}, got {}", other.type_str())));
-            }
-        };
-        have_n |= known == "n";
+        let value = key_value(&doc, known, v)?;
         if known == "index" {
-            let KeyValue::Text(source) = value else {
-                return Err(doc.error(
-                    known,
-                    format!(
-                        "expected {}",
-                        polbrdf::model::spec::expected(known).unwrap_or("a string")
-                    ),
-                ));
-            };
-            // A library id or a refractiveindex.info YAML file, relative to this file's folder.
-            let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
-            let index = crate::library::resolve(&source, folder)
-                .map_err(|e| doc.error(known, e.to_string()))?;
-            // A file is recorded by its absolute path, so that a material written elsewhere
-            // (`material_to_toml`, a fit's output) still finds it.
-            let source = match source.strip_prefix(crate::library::PREFIX) {
-                Some(_) => source,
-                None => {
-                    let p = Path::new(&source);
-                    let p = match folder {
-                        Some(dir) if p.is_relative() => dir.join(p),
-                        _ => p.to_path_buf(),
-                    };
-                    std::fs::canonicalize(&p)
-                        .map(|p| p.to_string_lossy().into_owned())
-                        .unwrap_or(source)
-                }
-            };
-            spec.spectral = Some(polbrdf::model::SpectralSource {
-                source,
-                index: std::sync::Arc::new(index),
-            });
+            spec.spectral = Some(spectral_source(&doc, path, value)?);
             continue;
         }
         spec.set(known, value).map_err(|m| doc.error(known, m))?;
     }
+    check_index_or_n(&doc)?;
+    validate(&doc, &spec)?;
+    Ok(spec)
+}
+
+/// The value of key `known` as the core takes it (an integer as a number); a table, array or
+/// date is an error saying what the key expects.
+fn key_value(doc: &TomlDoc<'_>, known: &str, v: &Value) -> Result<KeyValue> {
+    Ok(match v {
+        Value::Float(x) => KeyValue::Number(*x),
+        Value::Integer(i) => KeyValue::Number(*i as f64),
+        Value::String(t) => KeyValue::Text(t.clone()),
+        Value::Boolean(b) => KeyValue::Bool(*b),
+        other => {
+            let want = polbrdf::model::spec::expected(known).unwrap_or("a value");
+            return Err(doc.error(known, format!("expected {want}, got {}", other.type_str())));
+        }
+    })
+}
+
+/// `index`: a library id or a refractiveindex.info YAML file relative to the material file's
+/// folder (`path`'s), loaded; a file is recorded by its absolute path.
+fn spectral_source(
+    doc: &TomlDoc<'_>,
+    path: &Path,
+    value: KeyValue,
+) -> Result<polbrdf::model::SpectralSource> {
+    let known = "index";
+    let KeyValue::Text(source) = value else {
+        return Err(doc.error(
+            known,
+            format!(
+                "expected {}",
+                polbrdf::model::spec::expected(known).unwrap_or("a string")
+            ),
+        ));
+    };
+    // A library id or a refractiveindex.info YAML file, relative to this file's folder.
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty());
+    let index =
+        crate::library::resolve(&source, folder).map_err(|e| doc.error(known, e.to_string()))?;
+    // A file is recorded by its absolute path, so that a material written elsewhere
+    // (`material_to_toml`, a fit's output) still finds it.
+    let source = match source.strip_prefix(crate::library::PREFIX) {
+        Some(_) => source,
+        None => {
+            let p = Path::new(&source);
+            let p = match folder {
+                Some(dir) if p.is_relative() => dir.join(p),
+                _ => p.to_path_buf(),
+            };
+            std::fs::canonicalize(&p)
+                .map(|p| p.to_string_lossy().into_owned())
+                .unwrap_or(source)
+        }
+    };
+    Ok(polbrdf::model::SpectralSource {
+        source,
+        index: std::sync::Arc::new(index),
+    })
+}
+
+/// The index is given once: `index` (a spectral index) or the constant `n` (with `k`), not
+/// both, and one of them.
+fn check_index_or_n(doc: &TomlDoc<'_>) -> Result<()> {
     if doc.has("index") {
         let line = doc.line("index");
         if let Some(both) = ["n", "k"].into_iter().find(|k| doc.has(k)) {
@@ -98,14 +121,18 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
                 ),
             ));
         }
-    } else if !have_n {
+    } else if !doc.has("n") {
         return Err(doc.file_error(
             "missing required key `n` (real refractive index), or `index` (a spectral index: \
              \"library:<id>\" or a refractiveindex.info YAML file)",
         ));
     }
-    // Let the core validate values; map its parameter names back to the file's lines. A
-    // spectral material is validated at the first wavelength of its data.
+    Ok(())
+}
+
+/// The core's validation of `spec`, its errors mapped back to the file's keys and lines. A
+/// spectral material is validated at the first wavelength of its data.
+fn validate(doc: &TomlDoc<'_>, spec: &MaterialSpec) -> Result<()> {
     let built = match spec.wavelength_range() {
         Some((lo, _)) => spec.build_at(lo),
         None => spec.build(),
@@ -128,7 +155,7 @@ pub fn parse_material(text: &str, path: &Path) -> Result<MaterialSpec> {
             None => doc.file_error(e.to_string()),
         }
     })?;
-    Ok(spec)
+    Ok(())
 }
 
 /// Loads `arg` as a material: the path of a TOML file when it contains a `/` or ends in

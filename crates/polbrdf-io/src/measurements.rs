@@ -2,7 +2,7 @@
 //! with a `sigma_<column>` 1-σ uncertainty.
 
 use crate::csv_io::{
-    parse_number, record_geometry, record_wavelength, short_name, CsvReader, ANGLE_COLUMNS,
+    parse_number, record_geometry, record_wavelength, short_name, CsvReader, Record, ANGLE_COLUMNS,
     WAVELENGTH_COLUMN,
 };
 use crate::error::{Error, Result};
@@ -110,13 +110,55 @@ fn check_physical(name: &str, v: f64, sigma: Option<f64>) -> std::result::Result
     }
 }
 
+/// The measurement table of a CSV reader: its measured columns ([`measured_columns`]), then
+/// row by row the geometry, the wavelength (when there is that column) and the measured cells
+/// ([`push_cell`]).
 fn measurements_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<MeasurementTable> {
     let idx = reader.require(&ANGLE_COLUMNS)?;
     let path = reader.path().to_path_buf();
     let path = path.as_path();
     let headers = reader.headers().to_vec();
+    let measured = measured_columns(path, &headers)?;
+    let wl = headers.iter().position(|h| h == WAVELENGTH_COLUMN);
+    let mut columns: Vec<MeasuredColumn> = measured
+        .iter()
+        .map(|&(ci, si)| MeasuredColumn {
+            name: headers[ci].clone(),
+            values: Vec::new(),
+            sigmas: si.map(|_| Vec::new()),
+        })
+        .collect();
+    let (mut lines, mut geometries) = (Vec::new(), Vec::new());
+    let mut wavelengths = wl.map(|_| Vec::new());
+    while let Some(r) = reader.next_record()? {
+        geometries.push(record_geometry(path, &r, &idx)?);
+        if let (Some(c), Some(w)) = (wl, wavelengths.as_mut()) {
+            w.push(record_wavelength(path, &r, c)?);
+        }
+        lines.push(r.line);
+        let row = Row {
+            path,
+            record: &r,
+            headers: &headers,
+        };
+        for (column, &(ci, si)) in columns.iter_mut().zip(&measured) {
+            push_cell(&row, column, ci, si)?;
+        }
+    }
+    Ok(MeasurementTable {
+        path: path.to_path_buf(),
+        lines,
+        geometries,
+        columns,
+        wavelengths,
+    })
+}
+
+/// (column index, `sigma_` column index) of each measured column of `headers`, in file order:
+/// at least one, and every `sigma_` column with its quantity.
+fn measured_columns(path: &Path, headers: &[String]) -> Result<Vec<(usize, Option<usize>)>> {
     let measurable = measurable_columns();
-    for h in &headers {
+    for h in headers {
         if let Some(q) = h.strip_prefix("sigma_") {
             if !headers.iter().any(|x| x == q) {
                 return Err(Error::File {
@@ -130,7 +172,6 @@ fn measurements_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<Measurement
             }
         }
     }
-    // (column index, sigma column index) of each measured column, in file order.
     let measured: Vec<(usize, Option<usize>)> = headers
         .iter()
         .enumerate()
@@ -149,84 +190,82 @@ fn measurements_from<R: BufRead>(mut reader: CsvReader<R>) -> Result<Measurement
             ),
         });
     }
-    let wl = headers.iter().position(|h| h == WAVELENGTH_COLUMN);
-    let mut columns: Vec<MeasuredColumn> = measured
-        .iter()
-        .map(|&(ci, si)| MeasuredColumn {
-            name: headers[ci].clone(),
-            values: Vec::new(),
-            sigmas: si.map(|_| Vec::new()),
-        })
-        .collect();
-    let (mut lines, mut geometries) = (Vec::new(), Vec::new());
-    let mut wavelengths = wl.map(|_| Vec::new());
-    while let Some(r) = reader.next_record()? {
-        let line = r.line;
-        geometries.push(record_geometry(path, &r, &idx)?);
-        if let (Some(c), Some(w)) = (wl, wavelengths.as_mut()) {
-            w.push(record_wavelength(path, &r, c)?);
+    Ok(measured)
+}
+
+/// A row of a measurement file, with what its errors name.
+struct Row<'a> {
+    path: &'a Path,
+    record: &'a Record<'a>,
+    headers: &'a [String],
+}
+
+impl Row<'_> {
+    /// The number in column `k`: `None` for an empty cell, else finite.
+    fn cell(&self, k: usize) -> Result<Option<f64>> {
+        let (path, line) = (self.path, self.record.line);
+        let name = &self.headers[k];
+        let text = self.record.get(k).trim();
+        if text.is_empty() {
+            return Ok(None);
         }
-        lines.push(line);
-        let cell = |k: usize| -> Result<Option<f64>> {
-            let name = &headers[k];
-            let text = r.get(k).trim();
-            if text.is_empty() {
-                return Ok(None);
-            }
-            let v = parse_number(path, line, name, text)?;
-            if !v.is_finite() {
+        let v = parse_number(path, line, name, text)?;
+        if !v.is_finite() {
+            return Err(Error::Field {
+                path: path.to_path_buf(),
+                line,
+                field: name.to_string(),
+                message: format!("must be finite, got {v}"),
+            });
+        }
+        Ok(Some(v))
+    }
+}
+
+/// Appends the row's cell of measured column `ci` (its `sigma_` column `si`) to `column`: the
+/// value within its physical range ([`check_physical`]), and its uncertainty, which must be
+/// > 0 and present wherever the value is.
+fn push_cell(
+    row: &Row<'_>,
+    column: &mut MeasuredColumn,
+    ci: usize,
+    si: Option<usize>,
+) -> Result<()> {
+    let (path, line) = (row.path, row.record.line);
+    let h = &row.headers[ci];
+    let v = row.cell(ci)?;
+    let s = si.map(|k| row.cell(k)).transpose()?.flatten();
+    if let Some(v) = v {
+        check_physical(h, v, s.filter(|s| *s > 0.0)).map_err(|message| Error::Field {
+            path: path.to_path_buf(),
+            line,
+            field: h.clone(),
+            message,
+        })?;
+    }
+    column.values.push(v);
+    if let (Some(si), Some(sig)) = (si, column.sigmas.as_mut()) {
+        let name = &row.headers[si];
+        match (v, s) {
+            (Some(_), None) => {
                 return Err(Error::Field {
                     path: path.to_path_buf(),
                     line,
-                    field: name.to_string(),
-                    message: format!("must be finite, got {v}"),
-                });
+                    field: name.clone(),
+                    message: format!("missing: `{h}` has a value in this row"),
+                })
             }
-            Ok(Some(v))
-        };
-        for (column, &(ci, si)) in columns.iter_mut().zip(&measured) {
-            let h = &headers[ci];
-            let v = cell(ci)?;
-            let s = si.map(cell).transpose()?.flatten();
-            if let Some(v) = v {
-                check_physical(h, v, s.filter(|s| *s > 0.0)).map_err(|message| Error::Field {
+            (_, Some(s)) if s <= 0.0 => {
+                return Err(Error::Field {
                     path: path.to_path_buf(),
                     line,
-                    field: h.clone(),
-                    message,
-                })?;
+                    field: name.clone(),
+                    message: format!("an uncertainty must be > 0, got {s}"),
+                })
             }
-            column.values.push(v);
-            if let (Some(si), Some(sig)) = (si, column.sigmas.as_mut()) {
-                let name = &headers[si];
-                match (v, s) {
-                    (Some(_), None) => {
-                        return Err(Error::Field {
-                            path: path.to_path_buf(),
-                            line,
-                            field: name.clone(),
-                            message: format!("missing: `{h}` has a value in this row"),
-                        })
-                    }
-                    (_, Some(s)) if s <= 0.0 => {
-                        return Err(Error::Field {
-                            path: path.to_path_buf(),
-                            line,
-                            field: name.clone(),
-                            message: format!("an uncertainty must be > 0, got {s}"),
-                        })
-                    }
-                    _ => {}
-                }
-                sig.push(s);
-            }
+            _ => {}
         }
+        sig.push(s);
     }
-    Ok(MeasurementTable {
-        path: path.to_path_buf(),
-        lines,
-        geometries,
-        columns,
-        wavelengths,
-    })
+    Ok(())
 }

@@ -209,7 +209,22 @@ pub fn parse_header(bytes: &[u8], size: u64, path: &Path) -> Result<(Vec<Field>,
         pos: 0,
         path,
     };
-    if bytes.len() < 12 {
+    let n = preamble(&mut c, size)?;
+    let mut fields: Vec<Field> = Vec::new();
+    for k in 0..n {
+        let field = read_field(&mut c, k, &fields)?;
+        fields.push(field);
+    }
+    let header_end = c.pos as u64;
+    check_spans(&fields, header_end, size, path)?;
+    Ok((fields, header_end))
+}
+
+/// The header's start, for a file of `size` bytes: the magic, the version (1.0) and the field
+/// count (at most [`MAX_FIELDS`]), which it returns.
+fn preamble(c: &mut Cursor<'_>, size: u64) -> Result<u32> {
+    let path = c.path;
+    if c.bytes.len() < 12 {
         return Err(bad(
             path,
             format!(
@@ -239,47 +254,55 @@ pub fn parse_header(bytes: &[u8], size: u64, path: &Path) -> Result<(Vec<Field>,
     if n > MAX_FIELDS {
         return Err(bad(path, format!("{n} fields (more than {MAX_FIELDS})")));
     }
-    let mut fields: Vec<Field> = Vec::new();
-    for k in 0..n {
-        let what = format!("field {k}");
-        let len = c.u16(&format!("{what}: name length"))?;
-        let name = std::str::from_utf8(c.take(len as usize, &format!("{what}: name"))?)
-            .map_err(|_| bad(path, format!("{what}: name is not UTF-8")))?
-            .to_string();
-        if fields.iter().any(|f| f.name == name) {
-            return Err(field_err(path, &name, "appears twice".into()));
-        }
-        let ndim = c.u16(&format!("field `{name}`: ndim"))?;
-        if ndim > MAX_NDIM {
-            return Err(field_err(
-                path,
-                &name,
-                format!("{ndim} dimensions (more than {MAX_NDIM})"),
-            ));
-        }
-        let code = c.u8(&format!("field `{name}`: dtype"))?;
-        let dtype = Dtype::from_code(code).ok_or_else(|| {
-            field_err(
-                path,
-                &name,
-                format!("unknown dtype code {code} (1–11 are defined)"),
-            )
-        })?;
-        let offset = c.u64(&format!("field `{name}`: offset"))?;
-        let mut shape = Vec::with_capacity(ndim as usize);
-        for _ in 0..ndim {
-            shape.push(c.u64(&format!("field `{name}`: shape"))?);
-        }
-        fields.push(Field {
-            name,
-            dtype,
-            offset,
-            shape,
-        });
+    Ok(n)
+}
+
+/// Field `k` of the header, after `fields`: its name (UTF-8, not one of theirs), number of
+/// dimensions (at most [`MAX_NDIM`]), dtype code, data offset and shape.
+fn read_field(c: &mut Cursor<'_>, k: u32, fields: &[Field]) -> Result<Field> {
+    let path = c.path;
+    let what = format!("field {k}");
+    let len = c.u16(&format!("{what}: name length"))?;
+    let name = std::str::from_utf8(c.take(len as usize, &format!("{what}: name"))?)
+        .map_err(|_| bad(path, format!("{what}: name is not UTF-8")))?
+        .to_string();
+    if fields.iter().any(|f| f.name == name) {
+        return Err(field_err(path, &name, "appears twice".into()));
     }
-    let header_end = c.pos as u64;
+    let ndim = c.u16(&format!("field `{name}`: ndim"))?;
+    if ndim > MAX_NDIM {
+        return Err(field_err(
+            path,
+            &name,
+            format!("{ndim} dimensions (more than {MAX_NDIM})"),
+        ));
+    }
+    let code = c.u8(&format!("field `{name}`: dtype"))?;
+    let dtype = Dtype::from_code(code).ok_or_else(|| {
+        field_err(
+            path,
+            &name,
+            format!("unknown dtype code {code} (1–11 are defined)"),
+        )
+    })?;
+    let offset = c.u64(&format!("field `{name}`: offset"))?;
+    let mut shape = Vec::with_capacity(ndim as usize);
+    for _ in 0..ndim {
+        shape.push(c.u64(&format!("field `{name}`: shape"))?);
+    }
+    Ok(Field {
+        name,
+        dtype,
+        offset,
+        shape,
+    })
+}
+
+/// Every field's data inside the file of `size` bytes, after the header (which ends at
+/// `header_end`) and not overlapping another field's; shapes that overflow are errors.
+fn check_spans(fields: &[Field], header_end: u64, size: u64, path: &Path) -> Result<()> {
     let mut spans = Vec::new();
-    for f in &fields {
+    for f in fields {
         let bytes = f
             .shape
             .iter()
@@ -322,7 +345,7 @@ pub fn parse_header(bytes: &[u8], size: u64, path: &Path) -> Result<(Vec<Field>,
             ));
         }
     }
-    Ok((fields, header_end))
+    Ok(())
 }
 
 impl TensorFile {

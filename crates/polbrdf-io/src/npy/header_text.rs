@@ -228,131 +228,41 @@ fn truncate(s: &str) -> String {
 
 /// Parses the header's dict literal into columns and row count (version and offset left 0).
 pub(super) fn parse_header_text(text: &str, path: &Path) -> Result<NpyHeader> {
-    let chars: Vec<char> = text.chars().collect();
-    let mut p = LitParser {
-        s: &chars,
-        i: 0,
-        depth: 0,
-    };
-    let bad = |m: String| file_err(path, format!(".npy header: {m}"));
-    let lit = p.value().map_err(bad)?;
-    if p.peek().is_some() {
-        return Err(bad("text after the header's dict".into()));
-    }
-    let Lit::Dict(items) = lit else {
-        return Err(bad(format!("expected a dict, found {}", lit.kind())));
-    };
-    let (mut descr, mut order, mut shape) = (None, None, None);
-    for (k, v) in items {
-        let Lit::Str(k) = k else {
-            return Err(bad(format!("a key is {}, not a string", k.kind())));
-        };
-        let slot = match k.as_str() {
-            "descr" => &mut descr,
-            "fortran_order" => &mut order,
-            "shape" => &mut shape,
-            other => {
-                return Err(bad(format!(
-                    "unknown key `{}` (expected descr, fortran_order, shape)",
-                    truncate(other)
-                )))
-            }
-        };
-        if slot.replace(v).is_some() {
-            return Err(bad(format!("key `{k}` appears twice")));
-        }
-    }
-    let (Some(descr), Some(order), Some(shape)) = (descr, order, shape) else {
-        return Err(bad(
-            "the keys descr, fortran_order and shape are all required".into(),
-        ));
-    };
+    let err = |m: String| bad(path, m);
+    let items = header_dict(text, path)?;
+    let (descr, order, shape) = header_keys(items, path)?;
     let shape = match shape {
         Lit::Tuple(v) => v
             .into_iter()
             .map(|d| match d {
                 Lit::Int(n) => Ok(n),
-                other => Err(bad(format!("shape holds {}, not an integer", other.kind()))),
+                other => Err(err(format!("shape holds {}, not an integer", other.kind()))),
             })
             .collect::<Result<Vec<u64>>>()?,
-        other => return Err(bad(format!("shape is {}, not a tuple", other.kind()))),
+        other => return Err(err(format!("shape is {}, not a tuple", other.kind()))),
     };
-    match order {
-        Lit::Bool(false) => {}
-        Lit::Bool(true) => {
-            return Err(bad(
-                "Fortran order is not supported (save a C-ordered structured array)".into(),
-            ))
-        }
-        other => {
-            return Err(bad(format!(
-                "fortran_order is {}, not a boolean",
-                other.kind()
-            )))
-        }
-    }
+    check_order(order, path)?;
     let fields = match descr {
         Lit::List(fields) => fields,
         Lit::Str(d) => {
-            return Err(bad(format!(
+            return Err(err(format!(
                 "the array has the plain dtype `{}` and shape {shape:?}: a table needs named \
                  columns — save a structured array (e.g. numpy.rec.fromarrays(columns, \
                  names=[...]))",
                 truncate(&d)
             )))
         }
-        other => return Err(bad(format!("descr is {}, not a list", other.kind()))),
+        other => return Err(err(format!("descr is {}, not a list", other.kind()))),
     };
     let rows = match shape.as_slice() {
         [n] => *n,
         _ => {
-            return Err(bad(format!(
+            return Err(err(format!(
                 "shape {shape:?}: a table is a one-dimensional structured array"
             )))
         }
     };
-    if fields.is_empty() {
-        return Err(bad("the dtype has no fields".into()));
-    }
-    let mut columns = Vec::with_capacity(fields.len());
-    let mut dtypes = Vec::with_capacity(fields.len());
-    // Repeated names by hashing: linear in the fields (a list search was quadratic: 50 000
-    // fields took seconds, issue 35).
-    let mut seen = std::collections::HashSet::with_capacity(fields.len());
-    for f in &fields {
-        let Lit::Tuple(parts) = f else {
-            return Err(bad(format!(
-                "a field is {}, not a (name, type) tuple",
-                f.kind()
-            )));
-        };
-        match parts.as_slice() {
-            [Lit::Str(name), Lit::Str(t)] => {
-                let Some(d) = Dtype::parse(t) else {
-                    return Err(bad(format!(
-                        "column `{}` has type `{}`; supported are <f8, >f8, <f4, >f4",
-                        truncate(name),
-                        truncate(t)
-                    )));
-                };
-                if name.is_empty() {
-                    return Err(bad("a column has an empty name".into()));
-                }
-                if !seen.insert(name.as_str()) {
-                    return Err(bad(format!("column `{}` appears twice", truncate(name))));
-                }
-                columns.push(name.clone());
-                dtypes.push(d);
-            }
-            [Lit::Str(name), _, _] => {
-                return Err(bad(format!(
-                    "column `{}` is a sub-array; only scalar columns are supported",
-                    truncate(name)
-                )))
-            }
-            _ => return Err(bad("a field is not a (name, type) pair of strings".into())),
-        }
-    }
+    let (columns, dtypes) = columns(&fields, path)?;
     Ok(NpyHeader {
         version: (0, 0),
         columns,
@@ -360,4 +270,125 @@ pub(super) fn parse_header_text(text: &str, path: &Path) -> Result<NpyHeader> {
         rows,
         data_offset: 0,
     })
+}
+
+/// An error of the header of `path`.
+fn bad(path: &Path, m: String) -> crate::error::Error {
+    file_err(path, format!(".npy header: {m}"))
+}
+
+/// The items of the header's literal, which must be one dict and nothing after it.
+fn header_dict(text: &str, path: &Path) -> Result<Vec<(Lit, Lit)>> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut p = LitParser {
+        s: &chars,
+        i: 0,
+        depth: 0,
+    };
+    let lit = p.value().map_err(|m| bad(path, m))?;
+    if p.peek().is_some() {
+        return Err(bad(path, "text after the header's dict".into()));
+    }
+    let Lit::Dict(items) = lit else {
+        return Err(bad(path, format!("expected a dict, found {}", lit.kind())));
+    };
+    Ok(items)
+}
+
+/// The values of `descr`, `fortran_order` and `shape`: each given once, no other key.
+fn header_keys(items: Vec<(Lit, Lit)>, path: &Path) -> Result<(Lit, Lit, Lit)> {
+    let (mut descr, mut order, mut shape) = (None, None, None);
+    for (k, v) in items {
+        let Lit::Str(k) = k else {
+            return Err(bad(path, format!("a key is {}, not a string", k.kind())));
+        };
+        let slot = match k.as_str() {
+            "descr" => &mut descr,
+            "fortran_order" => &mut order,
+            "shape" => &mut shape,
+            other => {
+                return Err(bad(
+                    path,
+                    format!(
+                        "unknown key `{}` (expected descr, fortran_order, shape)",
+                        truncate(other)
+                    ),
+                ))
+            }
+        };
+        if slot.replace(v).is_some() {
+            return Err(bad(path, format!("key `{k}` appears twice")));
+        }
+    }
+    let (Some(descr), Some(order), Some(shape)) = (descr, order, shape) else {
+        return Err(bad(
+            path,
+            "the keys descr, fortran_order and shape are all required".into(),
+        ));
+    };
+    Ok((descr, order, shape))
+}
+
+/// `fortran_order` must be `False` (C order).
+fn check_order(order: Lit, path: &Path) -> Result<()> {
+    match order {
+        Lit::Bool(false) => Ok(()),
+        Lit::Bool(true) => Err(bad(
+            path,
+            "Fortran order is not supported (save a C-ordered structured array)".into(),
+        )),
+        other => Err(bad(
+            path,
+            format!("fortran_order is {}, not a boolean", other.kind()),
+        )),
+    }
+}
+
+/// The column names and dtypes of the `descr` list: at least one field, each a (name, type)
+/// pair of a non-empty name given once and a supported scalar type.
+fn columns(fields: &[Lit], path: &Path) -> Result<(Vec<String>, Vec<Dtype>)> {
+    let err = |m: String| bad(path, m);
+    if fields.is_empty() {
+        return Err(err("the dtype has no fields".into()));
+    }
+    let mut columns = Vec::with_capacity(fields.len());
+    let mut dtypes = Vec::with_capacity(fields.len());
+    // Repeated names by hashing: linear in the fields (a list search was quadratic: 50 000
+    // fields took seconds, issue 35).
+    let mut seen = std::collections::HashSet::with_capacity(fields.len());
+    for f in fields {
+        let Lit::Tuple(parts) = f else {
+            return Err(err(format!(
+                "a field is {}, not a (name, type) tuple",
+                f.kind()
+            )));
+        };
+        match parts.as_slice() {
+            [Lit::Str(name), Lit::Str(t)] => {
+                let Some(d) = Dtype::parse(t) else {
+                    return Err(err(format!(
+                        "column `{}` has type `{}`; supported are <f8, >f8, <f4, >f4",
+                        truncate(name),
+                        truncate(t)
+                    )));
+                };
+                if name.is_empty() {
+                    return Err(err("a column has an empty name".into()));
+                }
+                if !seen.insert(name.as_str()) {
+                    return Err(err(format!("column `{}` appears twice", truncate(name))));
+                }
+                columns.push(name.clone());
+                dtypes.push(d);
+            }
+            [Lit::Str(name), _, _] => {
+                return Err(err(format!(
+                    "column `{}` is a sub-array; only scalar columns are supported",
+                    truncate(name)
+                )))
+            }
+            _ => return Err(err("a field is not a (name, type) pair of strings".into())),
+        }
+    }
+    Ok((columns, dtypes))
 }
