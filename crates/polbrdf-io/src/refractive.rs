@@ -64,6 +64,7 @@
 mod block;
 mod formula;
 mod table;
+mod values;
 mod yaml;
 
 use crate::error::{Error, Result};

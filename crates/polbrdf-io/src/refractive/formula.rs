@@ -1,7 +1,7 @@
 //! The dispersion formulas of `formula N` blocks: the coefficient counts each takes and the
 //! check that a formula gives a valid n over all of its range (module docs of `refractive`).
 
-use super::block::{numbers, BlockKeys, GivenRange, Gives};
+use super::values::{numbers, BlockKeys, GivenRange, Gives};
 use crate::error::Result;
 use polbrdf::error::MAX_INDEX;
 use polbrdf::optics::dispersion::Dispersion;

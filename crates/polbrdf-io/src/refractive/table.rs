@@ -1,7 +1,7 @@
 //! The rows of a `tabulated` block: validated, sorted by wavelength and made a table of n or
 //! k, repeated wavelengths resolved (module docs of `refractive`).
 
-use super::block::{number, BlockKeys, GivenRange, Gives};
+use super::values::{number, BlockKeys, GivenRange, Gives};
 use super::yaml::{Ctx, Entry, Node};
 use crate::error::Result;
 use polbrdf::error::MAX_INDEX;
