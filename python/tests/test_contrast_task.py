@@ -160,7 +160,7 @@ def test_the_invalid_zeniths_are_those_the_cli_marks(tmp_path: Path) -> None:
     assert np.array_equal(s.invalid_zeniths_target_deg, paint)
     assert np.array_equal(s.invalid_zeniths_background_deg, glass)
     assert np.array_equal(s.invalid_zeniths_deg, np.union1d(paint, glass))
-    # The CLI's summary of both jobs names the same zeniths.
+    # The CLI's summary of both jobs (on standard error) names the same zeniths.
     assert CLI is not None
     for args, line in [
         (["map", "--material", "paint"], "model flagged"),
@@ -174,7 +174,8 @@ def test_the_invalid_zeniths_are_those_the_cli_marks(tmp_path: Path) -> None:
         assert (
             f"{line} invalid (emissivity outside [0, 1]) at {paint.size} zenith(s) from "
             f"θr = {paint[0]:g}°"
-        ) in r.stdout, r.stdout
+        ) in r.stderr, r.stderr
+        assert r.stdout == "", "the summary is on standard error, the results in --out"
 
 
 def sun() -> polbrdf.Illumination:

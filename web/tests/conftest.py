@@ -46,11 +46,12 @@ def server(cli: Path):
     dist = _path("POLBRDF_WEB_DIST", ROOT / "web" / "dist")
     proc = subprocess.Popen(
         [str(cli), "explore", "--dir", str(dist), "--port", "0"],
-        stdout=subprocess.PIPE,
+        stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
     )
-    line = proc.stdout.readline() if proc.stdout else ""
+    # The address is a note for a person: standard error (docs/cli-conventions.md, Streams).
+    line = proc.stderr.readline() if proc.stderr else ""
     if not line.startswith("polbrdf explorer: http://"):
         proc.kill()
         _, err = proc.communicate()

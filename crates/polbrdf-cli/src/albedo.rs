@@ -2,6 +2,7 @@
 //! incidence angles, with every value above 1 (a parameter set that creates energy) flagged.
 
 use crate::error::CliError;
+use crate::output::write_output;
 use crate::spectrum::SpectralArgs;
 use polbrdf_io::csv_io::fmt_f64;
 use polbrdf_io::CsvTable;
@@ -24,7 +25,8 @@ pub struct Args {
         value_parser = crate::values::zenith()
     )]
     pub theta_i_deg: Vec<f64>,
-    /// Also write the table as CSV (theta_i_deg, albedo, surface, volume, exceeds_one).
+    /// The table as CSV (theta_i_deg, albedo, surface, volume, exceeds_one), written
+    /// atomically; standard output when absent or `-` (the human table goes to standard error).
     #[arg(long, value_name = "albedo.csv")]
     pub output: Option<PathBuf>,
     #[command(flatten)]
@@ -42,24 +44,22 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         theta_i_deg: args.theta_i_deg.clone(),
         spectral: args.spectral.request(),
     })?;
-    if let Some(path) = &args.output {
-        let mut t = CsvTable::new(AlbedoTable::COLUMNS);
-        for (theta, a) in &table.rows {
-            t.fields([
-                fmt_f64(*theta),
-                fmt_f64(a.total()),
-                fmt_f64(a.surface),
-                fmt_f64(a.volume),
-                (a.total() > 1.0).to_string(),
-            ]);
-        }
-        polbrdf_io::write_atomic(path, &t.into_bytes())?;
+    let mut t = CsvTable::new(AlbedoTable::COLUMNS);
+    for (theta, a) in &table.rows {
+        t.fields([
+            fmt_f64(*theta),
+            fmt_f64(a.total()),
+            fmt_f64(a.surface),
+            fmt_f64(a.volume),
+            (a.total() > 1.0).to_string(),
+        ]);
     }
-    print!("{}", summary(&table));
+    write_output(args.output.as_deref(), &t.into_bytes())?;
+    crate::output::note(&summary(&table));
     Ok(())
 }
 
-/// The table and the verdict, for standard output.
+/// The table and the verdict, for a person: on standard error.
 fn summary(table: &AlbedoTable) -> String {
     let mut out = format!(
         "polbrdf albedo: directional–hemispherical reflectance of {}\n\

@@ -39,7 +39,7 @@ pub fn run(
             (g.phi_r() - g.phi_i()).to_degrees()
         )
     };
-    println!(
+    crate::note!(
         "polbrdf check: {}{} over {} geometries (zenith step {grid_deg}°, azimuth step {}°){}\n",
         outcome.name,
         describe(outcome.spectrum.as_ref()),
@@ -54,7 +54,7 @@ pub fn run(
             String::new()
         }
     );
-    println!(
+    crate::note!(
         "  {} realizable: smallest coherency eigenvalue / F00 = {:.3e} (at {}{})",
         mark(r.realizable()),
         r.min_coherency.0,
@@ -63,7 +63,7 @@ pub fn run(
     );
     let r = r_energy;
     let top = r.max_albedo();
-    println!(
+    crate::note!(
         "  {} energy: largest directional–hemispherical reflectance {:.6} at θi = {:.0}°{}",
         mark(r.conserves_energy()),
         top.total(),
@@ -75,7 +75,7 @@ pub fn run(
         .iter()
         .filter(|a| a.violates_energy_conservation(0.0))
     {
-        println!(
+        crate::note!(
             "         albedo {:.6} > 1 at θi = {:.0}° (surface {:.6}, volume {:.6})",
             a.total(),
             a.theta_i.to_degrees(),
@@ -85,7 +85,7 @@ pub fn run(
     }
     let r = r_recip;
     if r.reciprocity_expected {
-        println!(
+        crate::note!(
             "  {} reciprocity: largest deviation {:.3e} (scalar) / {:.3e} (F vs P·Fᵀ·P) at {}{}",
             mark(r.reciprocal()),
             r.reciprocity.0,
@@ -94,7 +94,7 @@ pub fn run(
             at(*l_recip)
         );
     } else {
-        println!(
+        crate::note!(
             "  --   reciprocity: not expected (azimuth_term = \"eq3\" is not reciprocal); largest deviation {:.3e}",
             r.reciprocity.0.max(r.reciprocity.1)
         );

@@ -137,11 +137,11 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     figures(&mut files, &study)?;
     let paths = write_all(&args.out, &files)?;
     summary(&study, elapsed);
-    println!("Wrote {} files to {}", paths.len(), args.out.display());
+    crate::note!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
 }
 
-/// The summary on standard output: setting, null loci, the best directions.
+/// The summary on standard error: setting, null loci, the best directions.
 fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
     let (t_name, b_name) = (&study.target.name, &study.background.name);
     let score_name = match study.options.by {
@@ -159,7 +159,7 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
         ),
         Setting::Scene(s) => format!("; scene {}", s.path.display()),
     };
-    println!(
+    crate::note!(
         "polbrdf contrast: target {t_name}, background {b_name}{lighting}; {} viewing directions \
          in {:.0} ms",
         study.map.grid.len(),
@@ -170,7 +170,7 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
         ("background", &study.invalid_zeniths.background),
     ] {
         if let Some(t) = zeniths.first() {
-            println!(
+            crate::note!(
                 "  {which} model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) \
                  from θr = {}° (marked on the maps)",
                 zeniths.len(),
@@ -180,7 +180,7 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
     }
     let symmetric = study.problem.is_azimuth_independent();
     if let (Some(n), true) = (&study.nulls, symmetric) {
-        println!(
+        crate::note!(
             "  polarization null: {} direction(s) on the target's map, {} on the background's{}",
             n.target.len(),
             n.background.len(),
@@ -190,7 +190,7 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
                 ))
         );
     }
-    println!(
+    crate::note!(
         "  best directions by {score_name} (θr ≤ {}°, at least {}° apart{}){}:",
         short(study.rank.max_zenith_deg),
         short(study.rank.min_separation_deg),
@@ -206,12 +206,19 @@ fn summary(study: &ContrastStudy, elapsed: std::time::Duration) {
             ""
         }
     );
-    println!(
+    crate::note!(
         "  {:>3} {:>8} {:>8} {:>11} {:>11} {:>8} {:>9} {:>9}",
-        "#", "θr (°)", "φr (°)", "DoLP targ.", "DoLP back.", "ΔDoLP", "I_t/I_b", "pol. con."
+        "#",
+        "θr (°)",
+        "φr (°)",
+        "DoLP targ.",
+        "DoLP back.",
+        "ΔDoLP",
+        "I_t/I_b",
+        "pol. con."
     );
     for (k, s) in study.top.iter().enumerate() {
-        println!(
+        crate::note!(
             "  {:>3} {:>8.2} {:>8.2} {:>11.4} {:>11.4} {:>+8.4} {:>9.3} {:>9.4}",
             k + 1,
             deg(s.theta_r),

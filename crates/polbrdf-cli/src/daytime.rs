@@ -29,20 +29,21 @@ pub struct Args {
     #[arg(long, value_name = "FILE.toml|PRESET")]
     pub background: Option<String>,
     /// The date, YYYY-MM-DD. Default: the date of the scene's date_time.
-    #[arg(long, value_name = "YYYY-MM-DD")]
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = values::date())]
     pub date: Option<String>,
     /// First local time, HH:MM (the scene's UTC offset).
-    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.0)]
+    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.0, value_parser = values::clock())]
     pub from: String,
     /// Last local time, HH:MM (included when on a step).
-    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.1)]
+    #[arg(long, value_name = "HH:MM", default_value = DEFAULT_TIMES.1, value_parser = values::clock())]
     pub to: String,
     /// Minutes between two times.
     #[arg(long, value_name = "MIN", default_value_t = DEFAULT_TIMES.2,
           value_parser = values::number(Range::closed(1.0 / 60.0, f64::MAX)))]
     pub step_min: f64,
     /// Listed local times (HH:MM, comma separated) instead of --from/--to/--step-min.
-    #[arg(long, value_name = "HH:MM", value_delimiter = ',', conflicts_with_all = ["from", "to", "step_min"])]
+    #[arg(long, value_name = "HH:MM", value_delimiter = ',', value_parser = values::clock(),
+          conflicts_with_all = ["from", "to", "step_min"])]
     pub times: Vec<String>,
     /// Grid steps DTHETA,DPHI in degrees (or one value for both) of every time's study.
     /// Default 5,10.
@@ -220,13 +221,13 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     );
     let written = write_all(&args.out, &files)?;
     let up = study.rows().filter(|r| r[4] == 1.0).count();
-    println!(
+    crate::note!(
         "polbrdf daytime: {} times on {}, the sun up at {up}",
         study.rows.len(),
         study.date_times().first().map_or("", |d| &d[..10])
     );
     for p in written {
-        println!("  wrote {}", p.display());
+        crate::note!("  wrote {}", p.display());
     }
     Ok(())
 }

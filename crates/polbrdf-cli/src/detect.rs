@@ -219,14 +219,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let paths = write_all(&args.out, &files)?;
     summary(&study, elapsed);
     if let Some(line) = frame {
-        println!("{line}");
+        crate::note!("{line}");
     }
-    println!("Wrote {} files to {}", paths.len(), args.out.display());
+    crate::note!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
 }
 
 fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
-    println!(
+    crate::note!(
         "polbrdf detect: target {}, background {}, sensor {}; {} views in {:.0} ms",
         study.target.name,
         study.background.name,
@@ -235,7 +235,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
         elapsed.as_secs_f64() * 1e3
     );
     for (k, v) in study.ranked().into_iter().take(5).enumerate() {
-        println!(
+        crate::note!(
             "  {:>2}. θr = {:>6}°, φr = {:>7}°: max range {}{}{}",
             k + 1,
             short(v.theta_r.to_degrees()),
@@ -268,7 +268,7 @@ fn summary(study: &DetectStudy, elapsed: std::time::Duration) {
     }
     let saturated = study.saturated_views().len();
     if saturated > 0 {
-        println!(
+        crate::note!(
             "  saturated: {saturated} of {} views (see the notes above)",
             study.views.len()
         );

@@ -83,10 +83,8 @@ pub fn run(dir: Option<&Path>, port: u16) -> Result<(), CliError> {
         .server_addr()
         .to_ip()
         .map_or_else(|| format!("127.0.0.1:{port}"), |a| a.to_string());
-    println!("polbrdf explorer: http://{addr}/");
-    println!("serving {} (Ctrl-C stops)", dir.display());
-    use std::io::Write as _;
-    std::io::stdout().flush().map_err(CliError::Output)?;
+    crate::note!("polbrdf explorer: http://{addr}/");
+    crate::note!("serving {} (Ctrl-C stops)", dir.display());
     for request in server.incoming_requests() {
         let file = file_of(&dir, request.url()).filter(|p| p.is_file());
         let response = match file.map(|p| (std::fs::read(&p), p)) {

@@ -90,7 +90,7 @@ enum Command {
         data: PathBuf,
         /// Free parameters, comma-separated: any of n, k, a, b|sigma_deg, rho_d, rho_v,
         /// tau_deg, omega_deg.
-        #[arg(long, value_name = "LIST")]
+        #[arg(long, value_name = "LIST", value_parser = values::free_parameters())]
         free: String,
         /// fit.json destination (written atomically); standard output when absent.
         #[arg(long, value_name = "fit.json")]
@@ -149,6 +149,9 @@ enum Command {
     Detect(detect::Args),
     /// Directional–hemispherical reflectance (albedo) at a set of incidence angles; values
     /// above 1 (energy created by the parameters) are flagged.
+    ///
+    /// Output CSV (standard output, or --output): theta_i_deg, albedo, surface, volume,
+    /// exceeds_one; the table with its verdict goes to standard error.
     Albedo(albedo::Args),
     /// Polarized thermal emission by Kirchhoff's law: the emissivity Stokes vector at a set of
     /// view zenith angles, by route A (the definition) and route B (reciprocity).
@@ -196,6 +199,9 @@ enum Command {
     /// Check that a parameter set is physically valid: F realizable (coherency matrix positive
     /// semidefinite) over a dense grid, albedo ≤ 1 at every incidence angle, and reciprocity where
     /// the model form has it. Exit code 6 when a check fails.
+    ///
+    /// The report goes to standard error; --output writes the whole document as JSON (`-`:
+    /// standard output).
     Check {
         /// A TOML file or a preset name.
         #[arg(long, value_name = "FILE.toml|PRESET")]
@@ -315,6 +321,32 @@ fn checked_run(matches: &clap::ArgMatches, cli: Cli) -> Result<(), CliError> {
     run(cli)
 }
 
+/// The checks of `fit`'s options against each other, before any file is read (a `.pbsdf`
+/// table is known by its extension): `--index-out` needs `n` free, and the `.pbsdf` options
+/// do not apply to a measurement CSV (never dropped silently).
+fn fit_options(args: &fit::Args<'_>, pbsdf: bool) -> Result<(), CliError> {
+    let free = polbrdf_fit::Param::parse_list(args.free)
+        .map_err(|e| CliError::Usage(format!("--free: {e}")))?;
+    if args.index_out.is_some() && !free.contains(&polbrdf_fit::Param::N) {
+        return Err(CliError::Usage(
+            "--index-out needs `n` among the free parameters (--free)".into(),
+        ));
+    }
+    if !pbsdf {
+        let given = [
+            ("--subsample", args.subsample.is_some()),
+            ("--exclude-inadmissible", args.exclude_inadmissible),
+        ];
+        if let Some((name, _)) = given.iter().find(|(_, on)| *on) {
+            return Err(CliError::Usage(format!(
+                "{name} applies to a .pbsdf table only, not to a measurement CSV ({})",
+                args.data.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
 fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Eval {
@@ -350,7 +382,9 @@ fn run(cli: Cli) -> Result<(), CliError> {
                 subsample,
                 exclude_inadmissible,
             };
-            if polbrdf_tasks::pbsdf::is_pbsdf(&data) {
+            let pbsdf = polbrdf_tasks::pbsdf::is_pbsdf(&data);
+            fit_options(&args, pbsdf)?;
+            if pbsdf {
                 measured::run(&args)
             } else {
                 fit::run(&args)
@@ -554,6 +588,99 @@ mod tests {
             }
         }
         assert!(probed > 300, "{probed} probes");
+    }
+
+    /// The text options with a closed syntax, each with values that break it: their value
+    /// parsers (`values::date`, `clock`, `date_time`, `free_parameters`) refuse every one with
+    /// exit code 2 naming the option, before any file is read.
+    const SYNTAX_PROBES: &[(&str, &str, &[&str])] = &[
+        (
+            "daytime",
+            "date",
+            &[
+                "2026-13-01",
+                "2026-02-30",
+                "21.06.2026",
+                "2026-06-21T12:00:00Z",
+                "x",
+            ],
+        ),
+        (
+            "daytime",
+            "from",
+            &["24:00", "12:60", "7", "noon", "12:00:61"],
+        ),
+        (
+            "daytime",
+            "to",
+            &["24:00", "12:60", "7", "noon", "12:00:61"],
+        ),
+        ("daytime", "times", &["07:00,25:00", "12:60", "7", "noon"]),
+        (
+            "sun",
+            "date_time",
+            &["2026-06-21", "2026-06-21T12:00:00", "2026-06-21 12:00", "x"],
+        ),
+        ("fit", "free", &["colour", "n,n", "b,sigma_deg", "n;k"]),
+    ];
+
+    /// Text options that name something whose content decides (a preset), or that refuse any
+    /// value (a renamed option): no syntax to check at parsing.
+    const NAME_IDS: &[(&str, &str)] = &[("materials", "show"), ("export", "old_out")];
+
+    /// Issue 33: every text option of every command (walking the clap tree) is a path or
+    /// material, a name of [`NAME_IDS`], or an option with a syntax in [`SYNTAX_PROBES`]; each
+    /// value of the latter that breaks its syntax is refused by clap with exit code 2 naming the
+    /// option, before anything runs (a run would first stop at its input file, exit 3).
+    #[test]
+    fn every_text_option_with_a_syntax_refuses_a_bad_value_with_exit_code_2() {
+        let cli = Cli::command();
+        let mut probed = 0;
+        for sub in cli.get_subcommands() {
+            let name = sub.get_name();
+            for arg in sub.get_arguments().filter(|a| !a.is_positional()) {
+                if arg.get_value_parser().type_id() != std::any::TypeId::of::<String>() {
+                    continue;
+                }
+                let id = arg.get_id().as_str();
+                if MATERIAL_IDS.contains(&id) || NAME_IDS.contains(&(name, id)) {
+                    continue;
+                }
+                let Some((_, _, bad)) = SYNTAX_PROBES
+                    .iter()
+                    .find(|(c, i, _)| *c == name && *i == id)
+                else {
+                    panic!(
+                        "`polbrdf {name} --{id}` is text: give it a value parser in values.rs \
+                         and probes in SYNTAX_PROBES, or list it in NAME_IDS"
+                    );
+                };
+                let long = format!("--{}", arg.get_long().expect("a long option"));
+                for probe in *bad {
+                    let mut line = probe_templates(name).remove(0);
+                    if let Some(k) = line.iter().position(|a| *a == long) {
+                        line.drain(k..k + 2);
+                    }
+                    line.push(format!("{long}={probe}"));
+                    match outcome(&line) {
+                        Err(e) if e.kind() == clap::error::ErrorKind::ValueValidation => {
+                            assert_eq!(e.exit_code(), 2, "{line:?}");
+                            assert!(e.to_string().contains(&long), "{line:?}: {e}");
+                        }
+                        other => panic!(
+                            "{line:?}: not refused by the option's parser: {:?}",
+                            other.map_err(|e| e.to_string())
+                        ),
+                    }
+                    probed += 1;
+                }
+            }
+        }
+        assert_eq!(
+            probed,
+            SYNTAX_PROBES.iter().map(|(_, _, b)| b.len()).sum::<usize>(),
+            "every probe of SYNTAX_PROBES names an option of a command"
+        );
     }
 
     use std::path::Path;

@@ -6,13 +6,28 @@
 use crate::error::CliError;
 use std::path::Path;
 
-/// Runs `polbrdf lut --config FILE --out DIR`.
+/// Runs `polbrdf lut --config FILE --out DIR`; its summary goes to standard error.
 pub fn run(config: &Path, out: &Path) -> Result<(), CliError> {
     let cfg = polbrdf_io::lut::read_lut_config(config)?;
     let bar = crate::progress::Progress::new(cfg.rows(), "lut: rows");
-    Ok(polbrdf_tasks::lut::write_lut_with_progress(
-        &cfg,
-        out,
-        &mut |done, total| bar.set(done, total, None),
-    )?)
+    polbrdf_tasks::lut::write_lut_with_progress(&cfg, out, &mut |done, total| {
+        bar.set(done, total, None)
+    })?;
+    drop(bar);
+    let dims = [
+        cfg.materials.len(),
+        cfg.wavelength_um.len(),
+        cfg.theta_i_deg.len(),
+        cfg.theta_r_deg.len(),
+        cfg.dphi_deg.len(),
+    ];
+    crate::note!(
+        "polbrdf lut: {} rows (materials × wavelengths × θi × θr × Δφ = {}) × {} columns into \
+         {} (table.npy, attrs.json)",
+        cfg.rows(),
+        dims.map(|n| n.to_string()).join(" × "),
+        polbrdf_tasks::lut::columns(&cfg.quantities).len(),
+        out.display()
+    );
+    Ok(())
 }

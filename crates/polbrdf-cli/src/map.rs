@@ -39,7 +39,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
     let name = format!("{}{}", map.material.name, describe(map.spectrum.as_ref()));
     let files = map_files(&map, &name)?;
     let paths = write_all(&args.out, &files)?;
-    println!(
+    crate::note!(
         "polbrdf map: {name}, sun at θi = {}°, φi = {}°, {} viewing directions ({}° × {}°)",
         short(args.view.sun_zenith_deg.unwrap_or(f64::NAN)),
         short(args.view.sun_azimuth_deg),
@@ -48,7 +48,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         short(deg(map.grid.phi_step()))
     );
     if let Some(b) = map.highest_dolp() {
-        println!(
+        crate::note!(
             "  highest DoLP {:.4} at θr = {:.1}°, φr = {:.1}°",
             b.stokes.dolp(),
             deg(b.theta_r),
@@ -56,14 +56,14 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         );
     }
     if let Some(t) = map.invalid_zeniths.first() {
-        println!(
+        crate::note!(
             "  model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = {}° \
              (marked on the maps)",
             map.invalid_zeniths.len(),
             short(deg(*t))
         );
     }
-    println!("Wrote {} files to {}", paths.len(), args.out.display());
+    crate::note!("Wrote {} files to {}", paths.len(), args.out.display());
     Ok(())
 }
 

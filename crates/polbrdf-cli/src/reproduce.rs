@@ -15,14 +15,14 @@ pub fn run(out_dir: &Path) -> Result<(), CliError> {
     });
     drop(bar);
     let summary = summary?;
-    println!(
-        "Wrote {} files to {} — open {}:",
+    crate::note!(
+        "polbrdf reproduce: wrote {} files to {} — open {}:",
         summary.files.len(),
         out_dir.display(),
         out_dir.join("report.md").display()
     );
     for c in &summary.checks {
-        println!(
+        crate::note!(
             "  {} {}",
             if c.confirmed {
                 "confirmed:    "

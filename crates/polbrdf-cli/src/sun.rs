@@ -12,7 +12,7 @@ use polbrdf_tasks::sun::{sun, SunRequest};
 pub struct Args {
     /// The date and time with its UTC offset (RFC 3339): 2026-06-21T12:00:00Z (UTC) or
     /// 2026-06-21T14:00:00+02:00 (local time at UTC+2).
-    #[arg(long, value_name = "DATE_TIME")]
+    #[arg(long, value_name = "DATE_TIME", value_parser = values::date_time())]
     pub date_time: String,
     /// Latitude, degrees, north positive.
     #[arg(long, value_name = "DEG", allow_hyphen_values = true,

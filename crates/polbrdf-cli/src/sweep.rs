@@ -93,22 +93,17 @@ fn series(
     })
 }
 
-/// Runs `polbrdf spectrum`.
-pub fn run(args: &Args) -> Result<(), CliError> {
+/// The wavelengths of `--range-um` and `--points`: evenly spaced in log λ, the last one
+/// exactly λmax.
+fn wavelengths(args: &Args) -> Result<Vec<f64>, CliError> {
     let Pair(lo, hi) = args.range_um;
     if hi <= lo {
         return Err(CliError::Usage(format!(
             "--range-um = {lo},{hi}: need 0 < λmin < λmax (µm)"
         )));
     }
-    let geometry = match &args.geometry_deg {
-        Some(Quad([ti, pi, tr, pr])) => Geometry::from_degrees(*ti, *pi, *tr, *pr),
-        None => Geometry::from_degrees(args.theta_deg, 0.0, args.theta_deg, 180.0),
-    }
-    // The options' ranges hold the angles above the horizon already.
-    .map_err(|e| CliError::Usage(format!("--geometry-deg: {e}")))?;
     let step = (hi / lo).ln() / (args.points - 1) as f64;
-    let wavelengths: Vec<f64> = (0..args.points)
+    Ok((0..args.points)
         .map(|i| {
             if i + 1 == args.points {
                 hi
@@ -116,13 +111,21 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                 lo * (step * i as f64).exp()
             }
         })
-        .collect();
-    let mut all = Vec::new();
-    for arg in &args.material {
-        let (spec, name) = load_spec(arg, "--material")?;
-        all.push(series(&spec, name, arg, geometry, &wavelengths)?);
-    }
+        .collect())
+}
 
+/// The geometry of `--geometry-deg`, else the specular one at `--theta-deg`.
+fn geometry(args: &Args) -> Result<Geometry, CliError> {
+    match &args.geometry_deg {
+        Some(Quad([ti, pi, tr, pr])) => Geometry::from_degrees(*ti, *pi, *tr, *pr),
+        None => Geometry::from_degrees(args.theta_deg, 0.0, args.theta_deg, 180.0),
+    }
+    // The options' ranges hold the angles above the horizon already.
+    .map_err(|e| CliError::Usage(format!("--geometry-deg: {e}")))
+}
+
+/// spectrum.csv: one row per material and wavelength (full f64 precision).
+fn table(all: &[Series], wavelengths: &[f64]) -> Vec<u8> {
     let mut table = CsvTable::new([
         "wavelength_um",
         "material",
@@ -132,7 +135,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
         "dolp",
         "aolp_deg",
     ]);
-    for s in &all {
+    for s in all {
         for (i, l) in wavelengths.iter().enumerate() {
             table.fields([
                 format!("{l:?}"),
@@ -145,19 +148,28 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             ]);
         }
     }
+    table.into_bytes()
+}
+
+/// The geometry in words, for the caption and the summary.
+fn describe_geometry(geometry: Geometry) -> String {
     let deg = |x: f64| x.to_degrees();
-    let geo = format!(
+    format!(
         "θi = {}°, φi = {}°, θr = {}°, φr = {}°",
         round(deg(geometry.theta_i())),
         round(deg(geometry.phi_i())),
         round(deg(geometry.theta_r())),
         round(deg(geometry.phi_r()))
-    );
+    )
+}
+
+/// The figure: the DoLP of each material against wavelength (logarithmic axis).
+fn figure(all: &[Series], wavelengths: &[f64], geo: &str, (lo, hi): (f64, f64)) -> Figure {
     let top = all
         .iter()
         .flat_map(|s| s.dolp.iter().copied())
         .fold(0.0, f64::max);
-    let figure = Figure {
+    Figure {
         size: (1100, 650),
         panels: vec![Panel {
             title: format!("DoLP of the reflected light, unpolarized illumination ({geo})"),
@@ -188,19 +200,18 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             vlines: Vec::new(),
             legend: LegendAt::MiddleRight,
         }],
-    };
-    let mut files: Vec<Output> = vec![("spectrum.csv".into(), table.into_bytes())];
-    files.extend(
-        render_files(&[("spectrum", &figure as &dyn Render)])
-            .map_err(|(_, e)| CliError::Plot(e))?,
-    );
-    let written = write_all(&args.out, &files)?;
-    println!(
+    }
+}
+
+/// The summary on standard error: the setting, each material's DoLP range, the files.
+fn summary(args: &Args, all: &[Series], wavelengths: &[f64], geo: &str, files: usize) {
+    let Pair(lo, hi) = args.range_um;
+    crate::note!(
         "polbrdf spectrum: {} material(s) at {geo}, {} wavelengths {lo}–{hi} µm (log-spaced)",
         all.len(),
         args.points
     );
-    for s in &all {
+    for s in all {
         let (i, max) =
             s.dolp
                 .iter()
@@ -210,7 +221,7 @@ pub fn run(args: &Args) -> Result<(), CliError> {
                     (0, f64::NEG_INFINITY),
                     |a, (i, d)| if d > a.1 { (i, d) } else { a },
                 );
-        println!(
+        crate::note!(
             "  {:<24} DoLP {:.4} … {:.4} (largest at λ = {:.4} µm)",
             s.name,
             s.dolp.iter().copied().fold(f64::INFINITY, f64::min),
@@ -218,7 +229,31 @@ pub fn run(args: &Args) -> Result<(), CliError> {
             wavelengths[i]
         );
     }
-    println!("Wrote {} files to {}", written.len(), args.out.display());
+    crate::note!("Wrote {files} files to {}", args.out.display());
+}
+
+/// Runs `polbrdf spectrum`: the options checked, each material through the engine, the table
+/// and the figure written, the summary.
+pub fn run(args: &Args) -> Result<(), CliError> {
+    let wavelengths = wavelengths(args)?;
+    let geometry = geometry(args)?;
+    let mut all = Vec::new();
+    for arg in &args.material {
+        let (spec, name) = load_spec(arg, "--material")?;
+        all.push(series(&spec, name, arg, geometry, &wavelengths)?);
+    }
+    let geo = describe_geometry(geometry);
+    let Pair(lo, hi) = args.range_um;
+    let mut files: Vec<Output> = vec![("spectrum.csv".into(), table(&all, &wavelengths))];
+    files.extend(
+        render_files(&[(
+            "spectrum",
+            &figure(&all, &wavelengths, &geo, (lo, hi)) as &dyn Render,
+        )])
+        .map_err(|(_, e)| CliError::Plot(e))?,
+    );
+    let written = write_all(&args.out, &files)?;
+    summary(args, &all, &wavelengths, &geo, written.len());
     Ok(())
 }
 

@@ -1,5 +1,7 @@
-//! The value parsers of the numeric options, each carrying its option's range: clap refuses a
-//! value outside it as a usage error naming the option (exit code 2), before any file is read.
+//! The value parsers of the numeric options, each carrying its option's range, and of the text
+//! options with a closed syntax (dates, times, parameter lists): clap refuses a value outside
+//! its range or syntax as a usage error naming the option (exit code 2), before any file is
+//! read.
 //! One parser per option, written at the option (`value_parser = values::zenith()`); the
 //! ranges are the task layer's (which checks its requests again, for Python).
 //!
@@ -240,6 +242,42 @@ impl std::str::FromStr for GridDeg {
     }
 }
 
+/// A parser of a text option with a closed syntax: `check` is the parser of the layer that
+/// uses the value (polbrdf-io's `date_time`, polbrdf-fit's parameter list: one parser, not a
+/// copy), so clap refuses a malformed value as a usage error naming the option (exit code 2)
+/// before any file is read. The value is kept as text for the task's request, which checks it
+/// again (for Python).
+fn checked<T, E: std::fmt::Display>(
+    check: fn(&str) -> Result<T, E>,
+) -> impl Fn(&str) -> Result<String, String> + Clone + Send + Sync {
+    move |text| {
+        check(text)
+            .map(|_| text.to_string())
+            .map_err(|e| e.to_string())
+    }
+}
+
+/// A calendar date `YYYY-MM-DD` ([`polbrdf_io::date_time::parse_date`]).
+pub fn date() -> impl Fn(&str) -> Result<String, String> + Clone + Send + Sync {
+    checked(polbrdf_io::date_time::parse_date)
+}
+
+/// A time of day `HH:MM[:SS]` ([`polbrdf_io::date_time::parse_clock`]).
+pub fn clock() -> impl Fn(&str) -> Result<String, String> + Clone + Send + Sync {
+    checked(polbrdf_io::date_time::parse_clock)
+}
+
+/// A date and time with its UTC offset, RFC 3339
+/// ([`polbrdf_io::date_time::parse_date_time`]).
+pub fn date_time() -> impl Fn(&str) -> Result<String, String> + Clone + Send + Sync {
+    checked(polbrdf_io::date_time::parse_date_time)
+}
+
+/// A list of free fit parameters, `n,sigma_deg,…` ([`polbrdf_fit::Param::parse_list`]).
+pub fn free_parameters() -> impl Fn(&str) -> Result<String, String> + Clone + Send + Sync {
+    checked(polbrdf_fit::Param::parse_list)
+}
+
 /// The value types of the numeric options (the unit test of `lib.rs` probes every option of
 /// one of these types).
 #[cfg(test)]
@@ -282,5 +320,25 @@ mod tests {
         assert!(pair(Range::ZENITH, Range::AZIMUTH, "THETA,PHI")("10").is_err());
         assert_eq!("2".parse::<GridDeg>(), Ok(GridDeg((2.0, 2.0))));
         assert!("0".parse::<GridDeg>().is_err());
+    }
+
+    #[test]
+    fn text_options_keep_their_text_and_refuse_with_the_io_layer_s_message() {
+        assert_eq!(date()("2026-06-21"), Ok("2026-06-21".into()));
+        assert_eq!(
+            date()("2026-02-30").unwrap_err(),
+            polbrdf_io::date_time::parse_date("2026-02-30").unwrap_err()
+        );
+        assert_eq!(clock()("06:30"), Ok("06:30".into()));
+        assert!(clock()("24:00").is_err() && clock()("6h").is_err());
+        assert_eq!(
+            date_time()("2026-06-21T12:00:00Z"),
+            Ok("2026-06-21T12:00:00Z".into())
+        );
+        assert!(date_time()("2026-06-21T12:00:00").is_err());
+        assert_eq!(free_parameters()("n,rho_d"), Ok("n,rho_d".into()));
+        assert!(free_parameters()("n,colour")
+            .unwrap_err()
+            .contains("colour"));
     }
 }

@@ -6,7 +6,14 @@ use crate::common::{parse_csv, polbrdf, stderr, write};
 fn the_default_table_covers_0_to_85_degrees_and_matches_the_library() {
     let o = polbrdf(&["albedo", "--material", "paint"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = String::from_utf8(o.stdout).unwrap();
+    // The table for a person on standard error; the CSV that --output writes on standard output.
+    let text = stderr(&o);
+    let (header, csv_rows) = parse_csv(&String::from_utf8(o.stdout).unwrap());
+    assert_eq!(
+        header,
+        ["theta_i_deg", "albedo", "surface", "volume", "exceeds_one"]
+    );
+    assert_eq!(csv_rows.len(), 18);
     let rows: Vec<Vec<f64>> = text
         .lines()
         .filter_map(|l| {
@@ -21,6 +28,11 @@ fn the_default_table_covers_0_to_85_degrees_and_matches_the_library() {
         let a = polbrdf::directional_hemispherical(&paint, r[0].to_radians());
         assert!((r[1] - a.total()).abs() < 1e-6 && (r[2] - a.surface).abs() < 1e-6);
         assert!((r[1] - r[2] - r[3]).abs() < 2e-6);
+        let c = &csv_rows[k];
+        assert_eq!(c[0].parse::<f64>().unwrap(), r[0]);
+        assert_eq!(c[1].parse::<f64>().unwrap(), a.total());
+        assert_eq!(c[2].parse::<f64>().unwrap(), a.surface);
+        assert_eq!(c[4], "false");
     }
     assert!(!text.contains("EXCEEDS"), "{text}");
     assert!(text.contains("at or below 1"), "{text}");
@@ -48,7 +60,8 @@ fn an_albedo_above_one_is_flagged_with_its_excess() {
         csv.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(o.stdout.is_empty(), "the CSV goes to --output only");
+    let text = stderr(&o);
     assert_eq!(text.matches("EXCEEDS 1 by 0.6").count(), 3, "{text}");
     assert!(
         text.contains("WARNING") && text.contains("3 of 3"),

@@ -127,8 +127,8 @@ fn writes_maps_csv_and_best_json_that_agree() {
     let out = dir.path().join("out");
     let o = run_default(&out);
     assert!(o.status.success(), "{}", stderr(&o));
-    let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(stdout.contains("best directions by |ΔDoLP|"), "{stdout}");
+    let summary = stderr(&o);
+    assert!(summary.contains("best directions by |ΔDoLP|"), "{summary}");
 
     let mut names: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
@@ -555,9 +555,12 @@ fn a_piped_standard_error_gets_no_progress_bar() {
         dir.path().join("out.npy").to_str().unwrap(),
     ]);
     assert!(e.status.success(), "{}", stderr(&e));
+    // The bars' labels (the summary, on standard error too, counts viewing directions).
     for err in [stderr(&o), stderr(&e)] {
         assert!(
-            !err.contains('\r') && !err.contains("rows") && !err.contains("viewing directions"),
+            !err.contains('\r')
+                && !err.contains("eval: rows")
+                && !err.contains("contrast: viewing directions"),
             "{err:?}"
         );
     }
@@ -597,17 +600,17 @@ fn the_maps_mark_where_each_model_is_flagged_invalid() {
     };
     let (paint, glass) = (flagged("paint"), flagged("glass"));
     assert!(!paint.is_empty() && glass.is_empty(), "{paint:?} {glass:?}");
-    let stdout = String::from_utf8_lossy(&o.stdout);
+    let summary = stderr(&o);
     assert!(
-        stdout.contains(&format!(
+        summary.contains(&format!(
             "target model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = \
              {}° (marked on the maps)",
             paint.len(),
             paint[0]
         )),
-        "{stdout}"
+        "{summary}"
     );
-    assert!(!stdout.contains("background model flagged"), "{stdout}");
+    assert!(!summary.contains("background model flagged"), "{summary}");
     let legend = "model invalid here";
     for (figure, marked) in [
         ("dolp_target", true),

@@ -46,7 +46,7 @@ fn frame_files_are_written_and_seeded() {
     );
     let o = frame(&a, "sensors/sony-imx250mzr-dofp.toml", "1");
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = String::from_utf8_lossy(&o.stdout);
+    let text = stderr(&o);
     assert!(
         text.contains("frame: θr = 45°, φr = 0°, 400 m, seed 1"),
         "{text}"

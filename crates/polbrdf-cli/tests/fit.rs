@@ -202,3 +202,56 @@ fn a_parameter_pushed_to_its_bound_is_reported_with_an_upper_limit() {
         "k's covariance row is not defined"
     );
 }
+
+/// Issue 33: `fit`'s options are checked against each other before any file is read — a
+/// material and data that do not exist are never reached — and nothing is written.
+#[test]
+fn option_conflicts_are_refused_before_any_file_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("fit.json");
+    let index = dir.path().join("index.yml");
+    let (json_s, index_s) = (json.to_str().unwrap(), index.to_str().unwrap());
+    let missing = dir.path().join("missing.csv");
+    let missing = missing.to_str().unwrap();
+    let cases: [(&[&str], &str); 3] = [
+        (
+            &[
+                "--free",
+                "rho_d",
+                "--per-wavelength",
+                "--index-out",
+                index_s,
+            ],
+            "--index-out needs `n` among the free parameters (--free)",
+        ),
+        (
+            &["--free", "n", "--subsample", "2"],
+            "--subsample applies to a .pbsdf table only",
+        ),
+        (
+            &["--free", "n", "--exclude-inadmissible"],
+            "--exclude-inadmissible applies to a .pbsdf table only",
+        ),
+    ];
+    for (extra, message) in cases {
+        for data in [missing, &example("paint-goniometer.csv")] {
+            let mut args = vec![
+                "fit",
+                "--material",
+                "/nonexistent-polbrdf/m.toml",
+                "--data",
+                data,
+                "--output",
+                json_s,
+            ];
+            args.extend(extra);
+            let o = polbrdf(&args);
+            assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+            assert!(stderr(&o).contains(message), "{args:?}: {}", stderr(&o));
+            assert!(
+                !json.exists() && !index.exists(),
+                "{args:?}: a file was written"
+            );
+        }
+    }
+}

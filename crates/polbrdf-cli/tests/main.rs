@@ -24,4 +24,5 @@ mod outputs;
 mod pbsdf;
 mod presets;
 mod spectral;
+mod streams;
 mod units;

@@ -95,14 +95,14 @@ fn map_writes_csv_and_maps_of_the_model() {
         })
         .collect();
     assert!(!flagged.is_empty() && flagged[0] > 80.0, "{flagged:?}");
-    let stdout = String::from_utf8_lossy(&o.stdout);
+    let summary = stderr(&o);
     assert!(
-        stdout.contains(&format!(
+        summary.contains(&format!(
             "model flagged invalid (emissivity outside [0, 1]) at {} zenith(s) from θr = {}°",
             flagged.len(),
             flagged[0]
         )),
-        "{stdout}"
+        "{summary}"
     );
     for panel in ["brdf.svg", "dolp.svg", "aolp.svg"] {
         let svg = std::fs::read_to_string(out.join(panel)).unwrap();
