@@ -33,8 +33,9 @@ struct Case {
 /// Commands with no case here, and why: their stream discipline is held by other tests.
 const NOT_RUN: [(&str, &str); 1] = [(
     "bench",
-    "a minute and a half of timing probes in a debug build; tests/bench.rs holds its --json \
-     document on standard output",
+    "a minute and a half of timing probes in a debug build; tests/bench.rs holds the same rule \
+     (bench_table_goes_to_stderr_and_json_alone_to_stdout: the table on standard error, the \
+     --json document alone on standard output)",
 )];
 
 fn example(name: &str) -> String {
