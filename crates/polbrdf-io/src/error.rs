@@ -60,6 +60,25 @@ impl Error {
     pub fn is_data_error(&self) -> bool {
         !matches!(self, Error::Read { .. } | Error::Write { .. })
     }
+
+    /// A field error with `more` added to its message (what the reader knows of the field that
+    /// the value's parser does not); any other error unchanged.
+    pub(crate) fn with_more(self, more: &str) -> Error {
+        match self {
+            Error::Field {
+                path,
+                line,
+                field,
+                message,
+            } => Error::Field {
+                path,
+                line,
+                field,
+                message: format!("{message}{more}"),
+            },
+            other => other,
+        }
+    }
 }
 
 /// Shorthand for results of this crate.

@@ -4,10 +4,16 @@
 
 /// The modules of the crate a source file names through `crate::` or `use crate::`.
 fn uses(source: &str) -> Vec<String> {
-    let mut out: Vec<String> = source
-        .match_indices("crate::")
+    first_segments(source, "crate::")
+}
+
+/// The first segment after every `prefix` (`crate::`, `super::`) in `code`, sorted, once each
+/// (`""` for a grouped `prefix{…}`).
+fn first_segments(code: &str, prefix: &str) -> Vec<String> {
+    let mut out: Vec<String> = code
+        .match_indices(prefix)
         .map(|(i, _)| {
-            source[i + 7..]
+            code[i + prefix.len()..]
                 .chars()
                 .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
                 .collect()
@@ -83,22 +89,6 @@ fn code(source: &str) -> String {
         .join("\n")
 }
 
-/// The first segment of every `super::` path in `code` (`""` for a grouped `super::{…}`).
-fn super_uses(code: &str) -> Vec<String> {
-    let mut out: Vec<String> = code
-        .match_indices("super::")
-        .map(|(i, _)| {
-            code[i + 7..]
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                .collect()
-        })
-        .collect();
-    out.sort();
-    out.dedup();
-    out
-}
-
 #[test]
 fn the_format_modules_and_their_parts_use_one_another_one_way() {
     // Each module may use only modules ranked below it: `table` < `csv_io` < `npy`, `arrow`
@@ -131,7 +121,7 @@ fn the_format_modules_and_their_parts_use_one_another_one_way() {
             .collect();
         let mut edges: Vec<(usize, usize)> = Vec::new();
         for (k, (file, source)) in files[1..].iter().enumerate() {
-            for used in super_uses(&code(source)) {
+            for used in first_segments(&code(source), "super::") {
                 let j = parts.iter().position(|p| *p == used);
                 let j = j.unwrap_or_else(|| {
                     panic!("{file} uses `super::{used}`, not a sibling part of `{module}`")

@@ -30,21 +30,8 @@ pub(super) fn sun(doc: &TomlDoc<'_>) -> Result<Option<Sun>> {
     if let Some(time) = sun_time(doc)? {
         return sun_from_time(doc, &time).map(Some);
     }
-    let zenith_deg = doc.required_number("sun.zenith_deg").map_err(|e| match e {
-        Error::Field {
-            path,
-            line,
-            field,
-            message,
-        } => Error::Field {
-            path,
-            line,
-            field,
-            message: format!(
-                "{message}; or place the sun by `date_time`, `latitude_deg` and `longitude_deg`"
-            ),
-        },
-        e => e,
+    let zenith_deg = doc.required_number("sun.zenith_deg").map_err(|e| {
+        e.with_more("; or place the sun by `date_time`, `latitude_deg` and `longitude_deg`")
     })?;
     let irradiance = doc.required_number("sun.irradiance")?;
     let azimuth_deg = doc

@@ -96,20 +96,7 @@ pub(super) fn arrow_columns(
 /// A passed-through CSV field parsed as a number for a numeric output; an error says `why` the
 /// output needs a number.
 fn output_number(input: &Path, line: usize, name: &str, text: &str, why: &str) -> Result<f64> {
-    parse_number(input, line, name, text).map_err(|e| match e {
-        Error::Field {
-            path,
-            line,
-            field,
-            message,
-        } => Error::Field {
-            path,
-            line,
-            field,
-            message: format!("{message} ({why})"),
-        },
-        other => other,
-    })
+    parse_number(input, line, name, text).map_err(|e| e.with_more(&format!(" ({why})")))
 }
 
 /// One CSV row of the result table: row `k`'s input columns, then its 19 result values.
