@@ -196,8 +196,6 @@ fn format_number(v: f64, step: f64) -> String {
 }
 
 /// The superscript digits 0–9.
-const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-
 /// The label of the log-scale tick `m·10^k`: a plain number for |k| ≤ 2, else a power of ten
 /// with superscripts (`m×` in front unless `m` = 1).
 fn log_label(m: f64, k: i32) -> String {
@@ -205,13 +203,7 @@ fn log_label(m: f64, k: i32) -> String {
         let v = m * 10f64.powi(k);
         return format_number(v, 10f64.powi(k.min(0)));
     }
-    let mut p = String::from("10");
-    if k < 0 {
-        p.push('⁻');
-    }
-    for c in k.unsigned_abs().to_string().chars() {
-        p.push(SUPERSCRIPTS[c.to_digit(10).unwrap_or(0) as usize]);
-    }
+    let p = crate::chart::power_of_ten(k);
     if m == 1.0 {
         p
     } else {
