@@ -151,13 +151,6 @@ pub fn fig2(a: &Analysis) -> Figure {
 
 /// Fig. 3: smooth-surface DoLP vs incidence angle, with Table 1's row 0 for comparison.
 pub fn fig3(a: &Analysis) -> Figure {
-    let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
-        TABLE_ANGLES_DEG
-            .iter()
-            .zip(&t[0])
-            .map(|(&x, &y)| (x, y / 100.0))
-            .collect()
-    };
     Figure {
         size: (1100, 760),
         panels: vec![Panel {
@@ -177,22 +170,11 @@ pub fn fig3(a: &Analysis) -> Figure {
                 dashed: false,
                 width: 2,
             }],
-            markers: vec![
-                Markers {
-                    label: "paper's Table 1, roughness 0 (its model)".into(),
-                    points: row0(&TABLE_PAPER_MODEL),
-                    colors: vec![PALETTE[3]; 5],
-                    legend_color: PALETTE[3],
-                    marker: Marker::Disc,
-                },
-                Markers {
-                    label: "paper's Table 1, roughness 0 (Lawrence/Wolff)".into(),
-                    points: row0(&TABLE_PAPER_LAWRENCE),
-                    colors: vec![GREY; 5],
-                    legend_color: GREY,
-                    marker: Marker::Square,
-                },
-            ],
+            markers: row0_markers(
+                "paper's Table 1, roughness 0 (its model)",
+                "paper's Table 1, roughness 0 (Lawrence/Wolff)",
+                100.0,
+            ),
             vlines: vec![(brewster_deg(), format!(" Brewster {:.2}°", brewster_deg()))],
             legend: LegendAt::UpperLeft,
         }],
@@ -287,6 +269,35 @@ fn fig5_ours_vs_table(a: &Analysis) -> Panel {
 
 /// Table 1's cells (DoLP, %) as two marker sets, the paper's model column left of each angle
 /// and the Lawrence/Wolff column right of it, coloured by roughness row.
+/// The paper's Table 1 row 0 (roughness 0) as markers: its model's values (discs) and the
+/// Lawrence/Wolff values (grey squares), with their legend labels; the table's DoLP (%) divided
+/// by `per` (100: a fraction; 1: percent).
+fn row0_markers(model: &str, lawrence: &str, per: f64) -> Vec<Markers> {
+    let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
+        TABLE_ANGLES_DEG
+            .iter()
+            .zip(&t[0])
+            .map(|(&x, &y)| (x, y / per))
+            .collect()
+    };
+    vec![
+        Markers {
+            label: model.into(),
+            points: row0(&TABLE_PAPER_MODEL),
+            colors: vec![PALETTE[3]; 5],
+            legend_color: PALETTE[3],
+            marker: Marker::Disc,
+        },
+        Markers {
+            label: lawrence.into(),
+            points: row0(&TABLE_PAPER_LAWRENCE),
+            colors: vec![GREY; 5],
+            legend_color: GREY,
+            marker: Marker::Square,
+        },
+    ]
+}
+
 fn table1_markers() -> Vec<Markers> {
     let table_points = |t: &[[f64; 5]; 6]| -> (Vec<(f64, f64)>, Vec<RGBColor>) {
         let mut pts = Vec::new();
@@ -342,9 +353,6 @@ fn fig5_smooth_row(a: &Analysis) -> Panel {
             width: 2,
         })
         .collect();
-    let row0 = |t: &[[f64; 5]; 6]| -> Vec<(f64, f64)> {
-        TABLE_ANGLES_DEG.iter().copied().zip(t[0]).collect()
-    };
     Panel {
         title: "(b) Table 1 roughness-0 row vs smooth-surface hypotheses".into(),
         x_desc: "incidence (reflection) or emission angle θ (deg)".into(),
@@ -356,22 +364,11 @@ fn fig5_smooth_row(a: &Analysis) -> Panel {
         x_ticks: 10,
         y_ticks: 12,
         lines: lines_b,
-        markers: vec![
-            Markers {
-                label: "Table 1 row 0, paper's model".into(),
-                points: row0(&TABLE_PAPER_MODEL),
-                colors: vec![PALETTE[3]; 5],
-                legend_color: PALETTE[3],
-                marker: Marker::Disc,
-            },
-            Markers {
-                label: "Table 1 row 0, Lawrence/Wolff".into(),
-                points: row0(&TABLE_PAPER_LAWRENCE),
-                colors: vec![GREY; 5],
-                legend_color: GREY,
-                marker: Marker::Square,
-            },
-        ],
+        markers: row0_markers(
+            "Table 1 row 0, paper's model",
+            "Table 1 row 0, Lawrence/Wolff",
+            1.0,
+        ),
         vlines: vec![],
         legend: LegendAt::UpperLeft,
     }
